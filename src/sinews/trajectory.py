@@ -16,12 +16,14 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
+from sinews.errors import SinewsError
+
 __all__ = ["Trajectory", "TrajectoryError"]
 
 FORMAT_VERSION = 1
 
 
-class TrajectoryError(ValueError):
+class TrajectoryError(SinewsError):
     """A trajectory file or array that cannot be used, with a one-line reason."""
 
 
