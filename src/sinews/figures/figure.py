@@ -1,0 +1,253 @@
+"""`Figure`: an articulated planar figure as data, made from any suitable MJCF.
+
+A figure is its MJCF text plus what a controller and a fitness term need to
+know without reading XML: the actuated joints in actuator order, their neutral
+angles, PD gains and ranges, the bodies that count as base/feet and as head,
+the bodies and their parent links (for drawing), and the sensor columns (see
+`sinews.figures.sensors`).
+
+`Figure.from_mjcf` is the one constructor: it checks the MJCF, adds a contact
+sensor per base/head body, and reads everything else from the compiled model,
+so a user's own MJCF works exactly like the built-in figures if it has
+
+- a planar root: the first body's first three joints are slide x, slide z and
+  hinge y (named as the user likes; the built-ins call them ``root_x``,
+  ``root_z``, ``root_pitch``), and
+- one ``<position kp=… kv=…>`` servo per actuated joint, no other actuators.
+
+The initial state of a rollout is the model's default (``qpos0``), and the
+neutral angles default to it, so a builder lays the bodies out in the pose the
+figure rests in.
+"""
+
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+import numpy.typing as npt
+
+from sinews.errors import SinewsError
+from sinews.figures._mujoco import require_mujoco
+from sinews.figures.sensors import contact_sensor_name, sensor_columns
+
+if TYPE_CHECKING:
+    import mujoco
+
+__all__ = ["Figure", "FigureError"]
+
+FloatArray = npt.NDArray[np.float64]
+
+
+class FigureError(SinewsError):
+    """An MJCF that cannot be used as a figure, with the reason."""
+
+
+@dataclass(frozen=True, eq=False)
+class Figure:
+    """An articulated planar figure: its MJCF and what is needed to drive and sense it.
+
+    Build with `Figure.from_mjcf` (or a builder such as `sinews.figures.luxo`).
+
+    Attributes:
+        name: short name, e.g. ``"luxo"``.
+        xml: the MJCF, including the contact sensors.
+        joints: (n_act,) actuated joint names, in actuator (``ctrl``) order.
+        neutral: (n_act,) neutral joint angles, rad: the rest pose's targets.
+        kp: (n_act,) servo stiffness, N·m/rad.
+        kv: (n_act,) servo damping, N·m·s/rad.
+        joint_range: (n_act, 2) lowest and highest target, rad (±inf if unlimited).
+        base_bodies: bodies that count as base or feet.
+        head_bodies: bodies that count as head.
+        body_names: (B,) every body but the world, in model order.
+        edges: (E, 2) int32 parent-child links as indices into ``body_names``.
+        sensor_names: (S,) names of the sensor columns.
+    """
+
+    name: str
+    xml: str
+    joints: tuple[str, ...]
+    neutral: FloatArray
+    kp: FloatArray
+    kv: FloatArray
+    joint_range: FloatArray
+    base_bodies: tuple[str, ...]
+    head_bodies: tuple[str, ...]
+    body_names: tuple[str, ...]
+    edges: npt.NDArray[np.int32]
+    sensor_names: tuple[str, ...]
+
+    @property
+    def n_actuators(self) -> int:
+        """Number of actuated joints n_act."""
+        return len(self.joints)
+
+    @property
+    def n_sensors(self) -> int:
+        """Number of sensor columns S."""
+        return len(self.sensor_names)
+
+    @property
+    def contact_bodies(self) -> tuple[str, ...]:
+        """Bodies with a contact-force column: base/feet first, then head."""
+        return tuple(dict.fromkeys((*self.base_bodies, *self.head_bodies)))
+
+    def sensor_index(self, column: str) -> int:
+        """Index of the sensor column named ``column`` (e.g. ``"root_x"``)."""
+        try:
+            return self.sensor_names.index(column)
+        except ValueError:
+            raise FigureError(f"{self.name} has no sensor column {column!r}") from None
+
+    def model(self, timestep: float | None = None) -> mujoco.MjModel:
+        """Compile a fresh MuJoCo model, optionally with another physics step (seconds)."""
+        model = _compile(self.xml)
+        if timestep is not None:
+            model.opt.timestep = timestep
+        return model
+
+    @classmethod
+    def from_mjcf(
+        cls,
+        xml: str,
+        *,
+        name: str,
+        base_bodies: Sequence[str],
+        head_bodies: Sequence[str] = (),
+        neutral: npt.ArrayLike | None = None,
+    ) -> Figure:
+        """Make a figure from MJCF text with a planar root and position servos.
+
+        Args:
+            xml: the MJCF document.
+            name: the figure's name.
+            base_bodies: names of the bodies that count as base or feet.
+            head_bodies: names of the bodies that count as head.
+            neutral: (n_act,) neutral angles, rad; default the joints' ``qpos0``.
+
+        Returns:
+            The figure, whose MJCF has a contact sensor per base/head body added.
+
+        Raises:
+            FigureError: the MJCF does not compile or breaks one of the rules above.
+        """
+        contact = tuple(dict.fromkeys((*base_bodies, *head_bodies)))
+        if not base_bodies:
+            raise FigureError(f"{name}: name at least one base or foot body")
+        model = _compile(xml)
+        missing = [b for b in contact if _id(model, "body", b) < 0]
+        if missing:
+            raise FigureError(f"{name}: no body named {', '.join(map(repr, missing))}")
+        _check_planar_root(model, name)
+        xml = _with_contact_sensors(xml, contact)
+        model = _compile(xml)
+        joints, kp, kv = _servos(model, name)
+        qpos0 = np.array([model.qpos0[model.joint(j).qposadr[0]] for j in joints])
+        rest = qpos0 if neutral is None else np.asarray(neutral, dtype=np.float64)
+        if rest.shape != (len(joints),) or not np.isfinite(rest).all():
+            raise FigureError(f"{name}: neutral must be {len(joints)} finite angles")
+        bodies = tuple(model.body(i).name or f"body{i}" for i in range(1, model.nbody))
+        parents = model.body_parentid[2:]
+        links = [(p - 1, i + 1) for i, p in enumerate(parents) if p > 0]
+        return cls(
+            name=name,
+            xml=xml,
+            joints=joints,
+            neutral=rest,
+            kp=kp,
+            kv=kv,
+            joint_range=_ranges(model, joints),
+            base_bodies=tuple(base_bodies),
+            head_bodies=tuple(head_bodies),
+            body_names=bodies,
+            edges=np.array(links, dtype=np.int32).reshape(-1, 2),
+            sensor_names=sensor_columns(joints, contact),
+        )
+
+
+def _compile(xml: str) -> mujoco.MjModel:
+    mujoco = require_mujoco()
+    try:
+        return mujoco.MjModel.from_xml_string(xml)
+    except ValueError as exc:
+        raise FigureError(f"the MJCF does not compile: {exc}") from None
+
+
+def _id(model: mujoco.MjModel, kind: str, name: str) -> int:
+    mujoco = require_mujoco()
+    obj = getattr(mujoco.mjtObj, f"mjOBJ_{kind.upper()}")
+    return int(mujoco.mj_name2id(model, obj, name))
+
+
+def _check_planar_root(model: mujoco.MjModel, name: str) -> None:
+    mujoco = require_mujoco()
+    slide, hinge = mujoco.mjtJoint.mjJNT_SLIDE, mujoco.mjtJoint.mjJNT_HINGE
+    expected = ((slide, (1, 0, 0)), (slide, (0, 0, 1)), (hinge, (0, 1, 0)))
+    ok = model.njnt >= 3 and all(
+        model.jnt_bodyid[i] == 1
+        and model.jnt_type[i] == kind
+        and np.allclose(model.jnt_axis[i], axis)
+        for i, (kind, axis) in enumerate(expected)
+    )
+    if not ok:
+        raise FigureError(
+            f"{name}: the first body's first joints must be slide x, slide z, hinge y"
+        )
+
+
+def _with_contact_sensors(xml: str, bodies: Sequence[str]) -> str:
+    """The MJCF with a net-force contact sensor per body (kept if already there)."""
+    root = ET.fromstring(xml)
+    section = root.find("sensor")
+    if section is None:
+        section = ET.SubElement(root, "sensor")
+    present = {el.get("name") for sensors in root.iter("sensor") for el in sensors}
+    for body in bodies:
+        sensor = contact_sensor_name(body)
+        if sensor not in present:
+            attrs = {"name": sensor, "body1": body, "data": "force", "reduce": "netforce"}
+            ET.SubElement(section, "contact", attrs)
+    ET.indent(root)
+    return ET.tostring(root, encoding="unicode") + "\n"
+
+
+def _servos(model: mujoco.MjModel, name: str) -> tuple[tuple[str, ...], FloatArray, FloatArray]:
+    """Actuated joint names, kp and kv of the position servos, in actuator order."""
+    mujoco = require_mujoco()
+    joints = []
+    for a in range(model.nu):
+        kp = model.actuator_gainprm[a, 0]
+        servo = (
+            model.actuator_trntype[a] == mujoco.mjtTrn.mjTRN_JOINT
+            and model.actuator_gaintype[a] == mujoco.mjtGain.mjGAIN_FIXED
+            and model.actuator_biastype[a] == mujoco.mjtBias.mjBIAS_AFFINE
+            and kp > 0
+            and model.actuator_biasprm[a, 1] == -kp
+            and model.actuator_trnid[a, 0] >= 3
+        )
+        if not servo:
+            label = model.actuator(a).name or f"#{a}"
+            raise FigureError(f"{name}: actuator {label} is not a position servo on a joint")
+        joints.append(model.joint(model.actuator_trnid[a, 0]).name)
+    if not joints:
+        raise FigureError(f"{name}: the MJCF has no <position> servos")
+    if len(set(joints)) != len(joints) or not all(joints):
+        raise FigureError(f"{name}: each servo needs its own named joint")
+    kp = model.actuator_gainprm[:, 0].copy()
+    kv = -model.actuator_biasprm[:, 2].copy()
+    return tuple(joints), kp, kv
+
+
+def _ranges(model: mujoco.MjModel, joints: Sequence[str]) -> FloatArray:
+    """(n_act, 2) target range per servo: its ctrlrange, else its joint's range."""
+    out = np.tile([-np.inf, np.inf], (len(joints), 1))
+    for a, joint in enumerate(joints):
+        j = model.joint(joint).id
+        if model.actuator_ctrllimited[a]:
+            out[a] = model.actuator_ctrlrange[a]
+        elif model.jnt_limited[j]:
+            out[a] = model.jnt_range[j]
+    return out
