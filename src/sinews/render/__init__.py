@@ -1,0 +1,55 @@
+"""Drawing trajectories: pictures, animations with sound, contact sheets, fitness plots.
+
+Everything here reads `sinews.trajectory.Trajectory` objects only. Drawing
+goes through the renderer-neutral `Canvas` seam, with a Pillow raster back
+end (PNG, GIF, MP4 frames) and an SVG back end.
+
+Example:
+    >>> from sinews.render import render
+    >>> render(traj, "dance.mp4", audio="song.wav", overlay=True)  # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+from sinews.render.canvas import Canvas, Color, Point
+from sinews.render.errors import RenderError
+from sinews.render.media import (
+    iter_frames,
+    make_painter,
+    render,
+    save_gif,
+    save_mp4,
+    save_png,
+    save_svg,
+)
+from sinews.render.painter import FramePainter
+from sinews.render.plots import plot_fitness
+from sinews.render.raster import RasterCanvas
+from sinews.render.sheet import contact_sheet
+from sinews.render.style import Overlay, Style
+from sinews.render.svg import SvgCanvas
+from sinews.render.view import Box, View, world_bounds
+
+__all__ = [
+    "Box",
+    "Canvas",
+    "Color",
+    "FramePainter",
+    "Overlay",
+    "Point",
+    "RasterCanvas",
+    "RenderError",
+    "Style",
+    "SvgCanvas",
+    "View",
+    "contact_sheet",
+    "iter_frames",
+    "make_painter",
+    "plot_fitness",
+    "render",
+    "save_gif",
+    "save_mp4",
+    "save_png",
+    "save_svg",
+    "world_bounds",
+]

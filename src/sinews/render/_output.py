@@ -1,0 +1,41 @@
+"""Writing output files atomically, with one-line errors."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterator
+from contextlib import contextmanager, suppress
+from pathlib import Path
+
+from sinews.render.errors import RenderError
+
+__all__ = ["atomic_output", "suffix_of"]
+
+
+def suffix_of(path: str | os.PathLike[str], allowed: tuple[str, ...]) -> str:
+    """The lower-case suffix of ``path`` (e.g. ``".png"``); RenderError if not ``allowed``."""
+    suffix = Path(path).suffix.lower()
+    if suffix not in allowed:
+        shown = f"'{suffix}'" if suffix else "no suffix"
+        raise RenderError(f"{path}: cannot write {shown}; use one of {', '.join(allowed)}")
+    return suffix
+
+
+@contextmanager
+def atomic_output(path: str | os.PathLike[str]) -> Iterator[Path]:
+    """Yield a temporary path next to ``path``; move it into place if the block succeeds.
+
+    Readers never see a half-written file. An `OSError` in the block (missing
+    or read-only directory, full disk) becomes a `RenderError`; on any error
+    the temporary file is removed.
+    """
+    path = Path(path)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.part")
+    try:
+        yield tmp
+        os.replace(tmp, path)
+    except OSError as exc:
+        raise RenderError(f"cannot write {path}: {exc.strerror or exc}") from None
+    finally:
+        with suppress(OSError):
+            tmp.unlink()

@@ -1,0 +1,260 @@
+"""Drawing one trajectory frame — body, floor, debug overlay, caption — on a `Canvas`."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import numpy.typing as npt
+
+from sinews.render.canvas import Canvas, Color, Point
+from sinews.render.errors import RenderError
+from sinews.render.style import Overlay, Style, default_colors
+from sinews.render.view import View, world_bounds
+from sinews.trajectory import Trajectory
+
+__all__ = ["FramePainter", "frame_index", "has_floor", "node_radii"]
+
+_FAR_PX = 1e6  # points further off-canvas than this are not drawn (blown-up runs)
+
+
+def frame_index(traj: Trajectory, frame: int | None) -> int:
+    """The frame to draw: ``frame`` (negative counts from the end) or, for None, the middle."""
+    n = traj.n_frames
+    if n == 0:
+        raise RenderError("the trajectory has no frames")
+    if frame is None:
+        return n // 2
+    if not -n <= frame < n:
+        raise RenderError(f"frame {frame} is out of range for {n} frames")
+    return int(frame) % n
+
+
+def node_radii(traj: Trajectory, style: Style) -> npt.NDArray[np.float64]:
+    """(N,) radii in metres: the trajectory's, or ``style.default_radius`` for every node."""
+    if traj.radii is None:
+        return np.full(traj.n_nodes, style.default_radius)
+    return np.nan_to_num(np.abs(np.asarray(traj.radii, dtype=np.float64)))
+
+
+def has_floor(traj: Trajectory, style: Style) -> bool:
+    """Whether to draw the ground y = 0: ``style.floor``, or if None, whether the motion
+    stands on it (no node ever sinks below it by more than 2 cm + 5 % of the motion's height).
+    """
+    if style.floor is not None:
+        return style.floor
+    box = world_bounds(traj.positions, node_radii(traj, style))
+    if box is None:
+        return False
+    return box[1] >= -(0.02 + 0.05 * (box[3] - box[1]))
+
+
+def _as_colors(rgb: npt.NDArray[np.floating] | npt.NDArray[np.uint8]) -> list[Color]:
+    clipped = np.clip(np.round(rgb), 0, 255).astype(int).reshape(-1, 3)
+    return [(int(r), int(g), int(b)) for r, g, b in clipped]
+
+
+class FramePainter:
+    """Draws frames of one trajectory; sizes and scales are worked out once.
+
+    Nodes are discs of their radius (at least ``style.min_radius_px``) in
+    their colour with a darker rim; tendons are thin lines in the darkened
+    mean colour of their two nodes. Non-finite nodes (failed runs) are skipped.
+
+    Args:
+        traj: the motion to draw.
+        view: where the world appears on the canvas.
+        style: colours and sizes; None for `Style()`.
+        overlay: the debug overlay (labels, force arrows, responder rings), or None.
+        caption: text in the top-left corner, formatted per frame with
+            ``{frame}`` (index) and ``{time}`` (seconds), e.g. ``"t = {time:.2f} s"``.
+    """
+
+    def __init__(
+        self,
+        traj: Trajectory,
+        view: View,
+        *,
+        style: Style | None = None,
+        overlay: Overlay | None = None,
+        caption: str | None = None,
+    ) -> None:
+        self.traj = traj
+        self.view = view
+        self.style = style or Style()
+        self.overlay = overlay
+        self.caption = caption
+        side = min(view.width, view.height)
+        self._side = side
+        fill = (
+            default_colors(traj.n_nodes) if traj.colors is None else np.asarray(traj.colors)
+        ).astype(np.float64)
+        edge_fill = 0.5 * (fill[traj.edges[:, 0]] + fill[traj.edges[:, 1]]) * 0.62
+        self._rgb = {"node": fill, "rim": fill * 0.55, "edge": edge_fill}
+        self._colors = {key: _as_colors(rgb) for key, rgb in self._rgb.items()}
+        radii = node_radii(traj, self.style)
+        self._radius_px = np.maximum(radii * view.scale, self.style.min_radius_px).tolist()
+        self._edge_px = max(1.0, self.style.edge_width * side)
+        self._text_px = max(8.0, 0.022 * side)
+        self._floor = has_floor(traj, self.style)
+        self._force_scale = self._decide_force_scale()
+        self._responders = self._check_responders()
+        if caption is not None:
+            self._caption_text(0)
+
+    def _decide_force_scale(self) -> float | None:
+        if self.overlay is None or not self.overlay.forces or self.traj.forces is None:
+            return None
+        if self.overlay.force_scale is not None:
+            return self.overlay.force_scale
+        magnitude = np.linalg.norm(np.asarray(self.traj.forces, dtype=np.float64), axis=-1)
+        magnitude = magnitude[np.isfinite(magnitude) & (magnitude > 0)]
+        if magnitude.size == 0:
+            return None
+        return self.overlay.arrow_length * self._side / float(np.percentile(magnitude, 90))
+
+    def _check_responders(self) -> npt.NDArray[np.int64] | None:
+        if self.overlay is None or self.overlay.responder_nodes is None:
+            return None
+        if self.traj.triggers is None:
+            return None
+        nodes = np.asarray(self.overlay.responder_nodes, dtype=np.int64).reshape(-1)
+        n_responders = np.shape(self.traj.triggers)[1]
+        if nodes.size != n_responders:
+            raise RenderError(
+                f"responder_nodes has {nodes.size} entries for {n_responders} responders"
+            )
+        if nodes.size and (nodes.min() < 0 or nodes.max() >= self.traj.n_nodes):
+            raise RenderError("responder_nodes refers to nodes that do not exist")
+        return nodes
+
+    def _caption_text(self, frame: int) -> str:
+        assert self.caption is not None
+        try:
+            return self.caption.format(frame=frame, time=frame / self.traj.fps)
+        except (KeyError, IndexError, ValueError) as exc:
+            raise RenderError(
+                f"bad caption {self.caption!r}: use {{frame}} and {{time}} only ({exc})"
+            ) from None
+
+    def draw(self, canvas: Canvas, frames: int | Sequence[int]) -> None:
+        """Draw one frame, or several as onion skin (earlier ones faded, the last on top).
+
+        The overlay and caption belong to the last frame.
+
+        Args:
+            canvas: where to draw; its size should match the view's.
+            frames: frame index, or indices oldest first.
+        """
+        indices = [frames] if isinstance(frames, int) else list(frames)
+        if not indices:
+            raise RenderError("no frames to draw")
+        canvas.clear(self.style.background)
+        if self._floor:
+            self._draw_floor(canvas)
+        for age, frame in enumerate(reversed(indices)):
+            self._draw_body(canvas, frame, fade=0.8 * age / len(indices))
+        last = indices[-1]
+        if self.overlay is not None:
+            self._draw_overlay(canvas, last, self.overlay)
+        if self.caption is not None:
+            pad = max(4.0, 0.015 * self._side)
+            canvas.text(
+                (pad, pad),
+                self._caption_text(last),
+                self.style.text_color,
+                size=max(9.0, 0.03 * self._side),
+                halo=self.style.background,
+            )
+
+    def _draw_floor(self, canvas: Canvas) -> None:
+        width, height = self.view.width, self.view.height
+        y = self.view.y_px(0.0)
+        if y >= height:
+            return
+        top = max(y, 0.0)
+        corners = [(0.0, top), (float(width), top), (float(width), float(height)), (0.0, height)]
+        canvas.polygon(corners, self.style.ground_color)
+        if y >= 0.0:
+            canvas.line((0.0, y), (float(width), y), self.style.floor_color, self._edge_px)
+
+    def _points(self, frame: int) -> tuple[list[Point], list[bool]]:
+        """Canvas position of every node in ``frame``, and which ones can be drawn."""
+        px = self.view.to_px(self.traj.positions[frame])
+        visible = np.isfinite(px).all(axis=1) & (np.abs(px) < _FAR_PX).all(axis=1)
+        points = [(x, y) for x, y in np.nan_to_num(px).tolist()]
+        return points, np.asarray(visible, dtype=bool).tolist()
+
+    def _faded(self, key: str, fade: float) -> list[Color]:
+        if fade == 0.0:
+            return self._colors[key]
+        background = np.asarray(self.style.background, dtype=np.float64)
+        return _as_colors(self._rgb[key] * (1.0 - fade) + background * fade)
+
+    def _draw_body(self, canvas: Canvas, frame: int, fade: float) -> None:
+        points, visible = self._points(frame)
+        edge_colors = self._faded("edge", fade)
+        for (i, j), color in zip(self.traj.edges.tolist(), edge_colors, strict=True):
+            if visible[i] and visible[j]:
+                canvas.line(points[i], points[j], color, self._edge_px)
+        rim_width = max(0.75, 0.4 * self._edge_px)
+        for i, (fill, rim) in enumerate(
+            zip(self._faded("node", fade), self._faded("rim", fade), strict=True)
+        ):
+            if visible[i]:
+                canvas.circle(points[i], self._radius_px[i], fill, rim, rim_width)
+
+    def _draw_overlay(self, canvas: Canvas, frame: int, overlay: Overlay) -> None:
+        points, visible = self._points(frame)
+        if self._responders is not None and self.traj.triggers is not None:
+            fired = np.asarray(self.traj.triggers[frame], dtype=bool)
+            for i in np.unique(self._responders[fired]).tolist():
+                if visible[i]:
+                    r = self._radius_px[i]
+                    ring = r + max(3.0, 0.35 * r)
+                    canvas.circle(points[i], ring, None, overlay.ring_color, 2.0)
+        if self._force_scale is not None and self.traj.forces is not None:
+            self._draw_forces(canvas, frame, points, visible, overlay)
+        if overlay.labels:
+            self._draw_labels(canvas, points, visible)
+
+    def _draw_forces(
+        self,
+        canvas: Canvas,
+        frame: int,
+        points: list[Point],
+        visible: list[bool],
+        overlay: Overlay,
+    ) -> None:
+        assert self._force_scale is not None and self.traj.forces is not None
+        vectors = np.asarray(self.traj.forces[frame], dtype=np.float64) * self._force_scale
+        vectors[:, 1] *= -1.0  # y up in the world, down on the canvas
+        length = np.linalg.norm(vectors, axis=1)
+        longest = overlay.max_arrow * overlay.arrow_length * self._side
+        shrink = np.minimum(1.0, longest / np.maximum(length, 1e-12))
+        vectors *= shrink[:, None]
+        draw = np.asarray(visible) & np.isfinite(length) & (length >= 1.5)
+        width = max(1.0, 0.8 * self._edge_px)
+        for i in np.flatnonzero(draw).tolist():
+            x, y = points[i]
+            dx, dy = vectors[i].tolist()
+            canvas.arrow((x, y), (x + dx, y + dy), overlay.arrow_color, width)
+
+    def _draw_labels(self, canvas: Canvas, points: list[Point], visible: list[bool]) -> None:
+        """Names beside their nodes, on the side away from the body's middle."""
+        shown = [i for i, ok in enumerate(visible) if ok]
+        if not shown:
+            return
+        center_x = sum(points[i][0] for i in shown) / len(shown)
+        for i in shown:
+            x, y = points[i]
+            gap = self._radius_px[i] + 2.0
+            right = x >= center_x
+            canvas.text(
+                (x + gap if right else x - gap, y),
+                self.traj.node_names[i],
+                self.style.text_color,
+                size=self._text_px,
+                anchor="lm" if right else "rm",
+                halo=self.style.background,
+            )
