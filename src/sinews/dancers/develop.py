@@ -115,7 +115,7 @@ def develop(genome: DancerGenome, *, x: float = 0.0) -> Body:
     bulk = float(_lerp(0.7, 1.5, g["bulkiness"]))
     head_r = float(_lerp(0.075, 0.13, g["head_size"]))
     rest = np.array([pose[name] for name in NODES]) + [x, 0.0]
-    shift = (node_genes[:, 2:4] - 0.5) * 2.0 * 0.035 * height
+    shift = (node_genes[:, 2:4] - 0.5) * 2.0 * 0.025 * height
     rest += shift
     feet = [NODES.index("l_foot"), NODES.index("r_foot")]
     rest[feet, 1] -= shift[feet, 1]  # feet stay on the floor
@@ -136,8 +136,8 @@ def develop(genome: DancerGenome, *, x: float = 0.0) -> Body:
     strength = reduced * kind_omega**2 * _lerp(0.5, 1.5, edge_genes[:, 1])
     easing = _lerp(0.0, 0.25, edge_genes[:, 2])
 
-    home = mass * float(_lerp(9.0, 18.0, g["groundedness"])) ** 2
-    wiggle = mass * float(_lerp(0.0, 4.0, g["jitter"]))
+    home = mass * float(_lerp(10.0, 18.0, g["groundedness"])) ** 2
+    wiggle = mass * float(_lerp(0.0, 3.0, g["jitter"]))
     return Body(
         names=NODES,
         rest=rest,
