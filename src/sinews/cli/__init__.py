@@ -1,0 +1,55 @@
+"""The ``sinews`` command line: thin Typer commands, each calling one library function.
+
+Every command module below defines its commands on a `typer.Typer` and is
+registered here. User errors (`SinewsError`) print as one line and exit 2.
+"""
+
+from __future__ import annotations
+
+import sys
+
+import typer
+
+from sinews.errors import SinewsError
+
+__all__ = ["app", "main"]
+
+app = typer.Typer(
+    name="sinews",
+    help="Evolve expressive motion: spring-mass dancers and articulated figures.",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+)
+
+
+def _register() -> None:
+    from sinews.cli import bench, dancers
+
+    dancers.register(app)
+    bench.register(app)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the CLI; return the exit status (0 ok, 2 user error, 130 interrupted)."""
+    _register()
+    try:
+        app(args=argv, standalone_mode=False)
+    except SinewsError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return 130
+    except typer.Exit as exc:
+        return int(exc.exit_code or 0)
+    except Exception as exc:  # click usage errors and aborts
+        import click
+
+        if isinstance(exc, click.ClickException):
+            exc.show()
+            return exc.exit_code
+        if isinstance(exc, click.exceptions.Abort):
+            return 1
+        raise
+    return 0

@@ -1,0 +1,50 @@
+"""``sinews bench NAME``: run a benchmark and print ours vs the reference."""
+
+from __future__ import annotations
+
+import importlib
+import os
+import pkgutil
+from typing import Annotated
+
+import typer
+from rich.console import Console
+from rich.table import Table
+
+import sinews.benchmarks
+from sinews.errors import SinewsError
+
+__all__ = ["register"]
+
+
+def available() -> list[str]:
+    """Names of the benchmark modules."""
+    return sorted(
+        m.name for m in pkgutil.iter_modules(sinews.benchmarks.__path__) if not m.name.startswith("_")
+    )
+
+
+def bench(
+    names: Annotated[list[str] | None, typer.Argument(help="Benchmarks to run (default: all).")] = None,
+    quick: Annotated[bool, typer.Option(help="Smaller cases, for a quick look.")] = False,
+) -> None:
+    """Run benchmarks; each prints our rate, a reference's rate from the same run, and the ratio."""
+    known = available()
+    for name in names or known:
+        if name not in known:
+            raise SinewsError(f"no benchmark called {name!r}; choose from {', '.join(known)}")
+    console = Console()
+    console.print(f"sinews {sinews.__version__} on {os.cpu_count()} cores")
+    for name in names or known:
+        module = importlib.import_module(f"sinews.benchmarks.{name}")
+        table = Table(title=f"bench {name}")
+        for column in ("case", "ours", "reference", "ratio", "unit", "reference is"):
+            table.add_column(column, justify="left" if column in ("case", "unit", "reference is") else "right")
+        for m in module.run(quick=quick):
+            table.add_row(m.case, f"{m.ours:,.4g}", f"{m.reference:,.4g}", f"{m.ratio:.2f}x", m.unit, m.reference_name)
+        console.print(table)
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``bench`` command to ``app``."""
+    app.command("bench")(bench)
