@@ -16,7 +16,7 @@ from PIL import Image
 from sinews.render._output import atomic_output, suffix_of
 from sinews.render.errors import RenderError
 from sinews.render.ffmpeg import encode_mp4
-from sinews.render.painter import FramePainter, frame_index, node_radii
+from sinews.render.painter import FramePainter, fit_positions, frame_index, node_radii
 from sinews.render.raster import RasterCanvas
 from sinews.render.style import Overlay, Style
 from sinews.render.svg import SvgCanvas
@@ -58,6 +58,8 @@ def make_painter(
 ) -> FramePainter:
     """A painter whose view fits the whole motion (all frames) or shows ``box``.
 
+    A failed run is fitted to its frames before it blew up.
+
     Args:
         traj: the motion.
         size: canvas pixels, an int for a square or (width, height).
@@ -70,7 +72,7 @@ def make_painter(
     style = style or Style()
     pixels = _pixels(size)
     if box is None:
-        bounds = world_bounds(traj.positions, node_radii(traj, style))
+        bounds = world_bounds(fit_positions(traj), node_radii(traj, style))
         view = View.fit(bounds, pixels, margin=style.margin)
     else:
         view = View.fit(box, pixels, margin=0.0)

@@ -13,9 +13,10 @@ from sinews.render.style import Overlay, Style, default_colors
 from sinews.render.view import View, world_bounds
 from sinews.trajectory import Trajectory
 
-__all__ = ["FramePainter", "frame_index", "has_floor", "node_radii"]
+__all__ = ["FramePainter", "fit_positions", "frame_index", "has_floor", "node_radii"]
 
 _FAR_PX = 1e6  # points further off-canvas than this are not drawn (blown-up runs)
+_BLOWN_UP_METRES = 1e3
 
 
 def frame_index(traj: Trajectory, frame: int | None) -> int:
@@ -37,13 +38,27 @@ def node_radii(traj: Trajectory, style: Style) -> npt.NDArray[np.float64]:
     return np.nan_to_num(np.abs(np.asarray(traj.radii, dtype=np.float64)))
 
 
+def fit_positions(traj: Trajectory) -> npt.NDArray[np.floating]:
+    """(T', N, 2) the frames to fit a view to: all, or for a failed run those before it blew up.
+
+    A frame has blown up once a node is non-finite or more than a kilometre out.
+    """
+    if not traj.failed:
+        return traj.positions
+    sane = (np.abs(traj.positions) <= _BLOWN_UP_METRES).all(axis=(1, 2))  # False for NaN too
+    first_bad = int(np.argmin(sane)) if not sane.all() else traj.n_frames
+    return traj.positions[: max(first_bad, 1)]
+
+
 def has_floor(traj: Trajectory, style: Style) -> bool:
-    """Whether to draw the ground y = 0: ``style.floor``, or if None, whether the motion
-    stands on it (no node ever sinks below it by more than 2 cm + 5 % of the motion's height).
+    """Whether to draw the ground line y = 0.
+
+    ``style.floor`` if set; otherwise whether the motion stands on the ground:
+    no node ever sinks below it by more than 2 cm + 5 % of the motion's height.
     """
     if style.floor is not None:
         return style.floor
-    box = world_bounds(traj.positions, node_radii(traj, style))
+    box = world_bounds(fit_positions(traj), node_radii(traj, style))
     if box is None:
         return False
     return box[1] >= -(0.02 + 0.05 * (box[3] - box[1]))

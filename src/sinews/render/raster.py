@@ -21,6 +21,32 @@ def _font(size: int) -> ImageFont.FreeTypeFont | ImageFont.ImageFont:
     return ImageFont.load_default(size=size)
 
 
+@lru_cache(maxsize=1024)
+def _text_sprite(
+    text: str, px: int, color: Color, anchor: str, halo: Color | None
+) -> tuple[Image.Image, tuple[int, int]]:
+    """Rendered text as an RGBA image and its offset from the anchor point.
+
+    Labels repeat every frame; rendering each once makes the debug overlay
+    about twice as fast.
+    """
+    font = _font(px)
+    stroke = max(1, px // 8) if halo is not None else 0
+    box = font.getbbox(text, anchor=anchor, stroke_width=stroke)
+    left, top, right, bottom = (int(v) for v in box)
+    sprite = Image.new("RGBA", (max(1, right - left), max(1, bottom - top)), (*color, 0))
+    ImageDraw.Draw(sprite).text(
+        (-left, -top),
+        text,
+        fill=(*color, 255),
+        font=font,
+        anchor=anchor,
+        stroke_width=stroke,
+        stroke_fill=None if halo is None else (*halo, 255),
+    )
+    return sprite, (left, top)
+
+
 class RasterCanvas:
     """Draws into an RGB image ``supersample`` times larger, then box-downsamples.
 
@@ -127,16 +153,9 @@ class RasterCanvas:
         """One line of text placed by ``anchor``."""
         if anchor not in ANCHORS:
             raise RenderError(f"unknown text anchor {anchor!r}")
-        px = max(1, round(size * self._ss))
-        self._draw.text(
-            self._xy(position),
-            text,
-            fill=color,
-            font=_font(px),
-            anchor=anchor,
-            stroke_width=max(1, px // 8) if halo is not None else 0,
-            stroke_fill=halo,
-        )
+        sprite, (dx, dy) = _text_sprite(text, max(1, round(size * self._ss)), color, anchor, halo)
+        x, y = self._xy(position)
+        self._image.paste(sprite, (round(x) + dx, round(y) + dy), sprite)
 
     def image(self) -> Image.Image:
         """The picture at output size, as a new RGB image."""
