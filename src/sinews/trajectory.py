@@ -53,7 +53,7 @@ class Trajectory:
 
     positions: FloatArray
     fps: float
-    edges: npt.NDArray[np.int32]
+    edges: npt.NDArray[np.integer]
     node_names: tuple[str, ...]
     radii: FloatArray | None = None
     colors: npt.NDArray[np.uint8] | None = None

@@ -90,7 +90,9 @@ def test_random_genomes_stand_upright(random_crowd: tuple[BodyBatch, np.ndarray,
     assert np.all(feet[-1, :, :, 1] < 0.1)
 
 
-def test_random_genomes_keep_their_shape(random_crowd: tuple[BodyBatch, np.ndarray, object]) -> None:
+def test_random_genomes_keep_their_shape(
+    random_crowd: tuple[BodyBatch, np.ndarray, object],
+) -> None:
     batch, pos, _ = random_crowd
     edges = batch.edges[0]
     length = np.linalg.norm(pos[:, :, edges[:, 1]] - pos[:, :, edges[:, 0]], axis=-1)

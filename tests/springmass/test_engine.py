@@ -120,7 +120,7 @@ def random_body(rng: np.random.Generator, n: int) -> Body:
             edges.append((int(i), int(j)))
     return Body.build(
         [f"n{k}" for k in range(n)],
-        rng.uniform(0, 1, (n, 2)) + [0.0, 0.3],
+        rng.uniform(0, 1, (n, 2)) + np.array([0.0, 0.3]),
         edges,
         mass=rng.uniform(0.5, 2.0, n),
         weight=rng.uniform(-1.0, 1.0, n),
@@ -145,8 +145,16 @@ def test_numba_kernel_agrees_with_numpy_reference(follow: tuple[float, float]) -
     params = EngineParams(home_follow=follow, restitution=0.3)
     push = rng.normal(0.0, 5.0, (200, *batch.rest.shape))
     results = [
-        simulate(batch, batch.initial_state(), 200, params, external=push, backend=b,
-                 record_stride=3, record_forces=True)  # fmt: skip
+        simulate(
+            batch,
+            batch.initial_state(),
+            200,
+            params,
+            external=push,
+            backend=b,
+            record_stride=3,
+            record_forces=True,
+        )
         for b in ("numba", "numpy")
     ]
     (fast, fast_rec), (ref, ref_rec) = results

@@ -43,6 +43,8 @@ def run(quick: bool = False) -> list[Measurement]:
         ours = _rate(batch, STEPS, "numba", repeats=3)
         reference = _rate(batch, 60 if size > 256 else 120, "numpy", repeats=1)
         results.append(
-            Measurement(f"P={size} x {STEPS} steps", "node-steps/s", ours, reference, "numpy reference")
+            Measurement(
+                f"P={size} x {STEPS} steps", "node-steps/s", ours, reference, "numpy reference"
+            )
         )
     return results

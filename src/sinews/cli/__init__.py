@@ -24,10 +24,11 @@ app = typer.Typer(
 
 
 def _register() -> None:
-    from sinews.cli import bench, dancers
+    from sinews.cli.bench import register as register_bench
+    from sinews.cli.dancers import register as register_dancers
 
-    dancers.register(app)
-    bench.register(app)
+    register_dancers(app)
+    register_bench(app)
 
 
 def main(argv: list[str] | None = None) -> int:

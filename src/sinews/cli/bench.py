@@ -20,12 +20,16 @@ __all__ = ["register"]
 def available() -> list[str]:
     """Names of the benchmark modules."""
     return sorted(
-        m.name for m in pkgutil.iter_modules(sinews.benchmarks.__path__) if not m.name.startswith("_")
+        m.name
+        for m in pkgutil.iter_modules(sinews.benchmarks.__path__)
+        if not m.name.startswith("_")
     )
 
 
 def bench(
-    names: Annotated[list[str] | None, typer.Argument(help="Benchmarks to run (default: all).")] = None,
+    names: Annotated[
+        list[str] | None, typer.Argument(help="Benchmarks to run (default: all).")
+    ] = None,
     quick: Annotated[bool, typer.Option(help="Smaller cases, for a quick look.")] = False,
 ) -> None:
     """Run benchmarks; each prints our rate, a reference's rate from the same run, and the ratio."""
@@ -39,9 +43,18 @@ def bench(
         module = importlib.import_module(f"sinews.benchmarks.{name}")
         table = Table(title=f"bench {name}")
         for column in ("case", "ours", "reference", "ratio", "unit", "reference is"):
-            table.add_column(column, justify="left" if column in ("case", "unit", "reference is") else "right")
+            table.add_column(
+                column, justify="left" if column in ("case", "unit", "reference is") else "right"
+            )
         for m in module.run(quick=quick):
-            table.add_row(m.case, f"{m.ours:,.4g}", f"{m.reference:,.4g}", f"{m.ratio:.2f}x", m.unit, m.reference_name)
+            table.add_row(
+                m.case,
+                f"{m.ours:,.4g}",
+                f"{m.reference:,.4g}",
+                f"{m.ratio:.2f}x",
+                m.unit,
+                m.reference_name,
+            )
         console.print(table)
 
 

@@ -34,9 +34,7 @@ def dance(
     trajectory: Annotated[
         Path | None, typer.Option(help="Also save the motion as a .npz trajectory.")
     ] = None,
-    debug_overlay: Annotated[
-        bool, typer.Option(help="Draw node labels and force arrows.")
-    ] = False,
+    debug_overlay: Annotated[bool, typer.Option(help="Draw node labels and force arrows.")] = False,
     size: Annotated[int, typer.Option(help="Picture size in pixels.")] = 480,
 ) -> None:
     """Let a dancer dance and draw it (.png, .svg, .gif or .mp4)."""

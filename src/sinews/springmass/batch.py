@@ -123,10 +123,16 @@ class BodyBatch:
         n_nodes = np.array([b.n_nodes for b in bodies], dtype=np.int64)
         n_edges = np.array([b.n_edges for b in bodies], dtype=np.int64)
         n_attr = np.array([len(b.attraction) for b in bodies], dtype=np.int64)
-        big_n, big_e, big_a = int(n_nodes.max()), max(1, int(n_edges.max())), max(1, int(n_attr.max()))
+        big_n, big_e, big_a = (
+            int(n_nodes.max()),
+            max(1, int(n_edges.max())),
+            max(1, int(n_attr.max())),
+        )
 
-        def pad(name: str, shape: tuple[int, ...], fill: float, dtype: type = np.float64) -> npt.NDArray:
-            out = np.full((n_bodies, *shape), fill, dtype=dtype)
+        def pad(
+            name: str, shape: tuple[int, ...], fill: float, dtype: type = np.float64
+        ) -> npt.NDArray:
+            out: npt.NDArray = np.full((n_bodies, *shape), fill, dtype=dtype)
             for p, body in enumerate(bodies):
                 value = getattr(body, name)
                 out[p, : len(value)] = value

@@ -28,8 +28,8 @@ def _float_array(value: npt.ArrayLike, shape: tuple[int, ...], name: str) -> Flo
     return array
 
 
-def _filled(value: npt.ArrayLike | None, shape: tuple[int, ...], fill: float) -> npt.ArrayLike:
-    return np.full(shape, fill) if value is None else value
+def _filled(value: npt.ArrayLike | None, shape: tuple[int, ...], fill: float) -> FloatArray:
+    return np.full(shape, fill) if value is None else np.asarray(value, dtype=np.float64)
 
 
 @dataclass(frozen=True, eq=False)

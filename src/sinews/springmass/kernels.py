@@ -33,15 +33,46 @@ _smooth = njit(cache=True, inline="always")(smoothstep)
 
 
 @njit(cache=True, parallel=True, fastmath=False)
-def simulate_kernel(  # noqa: PLR0913 - the kernel takes plain arrays on purpose
-    pos, vel, status, failed_step,
-    n_nodes, n_edges, n_attr, rest, mass, weight, radius, home, wiggle,
-    edges, rest_length, strength, easing, attraction, attr_strength, attr_reach,
-    drag, seeds, external, start_step, n_steps,
-    dt, gravity, floor, floor_y, friction, restitution, follow_x, follow_y, wiggle_steps,
+def simulate_kernel(
+    pos,
+    vel,
+    status,
+    failed_step,
+    n_nodes,
+    n_edges,
+    n_attr,
+    rest,
+    mass,
+    weight,
+    radius,
+    home,
+    wiggle,
+    edges,
+    rest_length,
+    strength,
+    easing,
+    attraction,
+    attr_strength,
+    attr_reach,
+    drag,
+    seeds,
+    external,
+    start_step,
+    n_steps,
+    dt,
+    gravity,
+    floor,
+    floor_y,
+    friction,
+    restitution,
+    follow_x,
+    follow_y,
+    wiggle_steps,
     max_speed,
-    record_stride, rec_pos, rec_force,
-):  # type: ignore[no-untyped-def]
+    record_stride,
+    rec_pos,
+    rec_force,
+):
     """Advance every body ``n_steps`` in place; fill the recordings.
 
     Args:
@@ -186,8 +217,9 @@ def simulate_kernel(  # noqa: PLR0913 - the kernel takes plain arrays on purpose
                             vel[p, i, 1] = -restitution * vel[p, i, 1]
                         vel[p, i, 0] *= 1.0 - friction
                 speed2 = vel[p, i, 0] * vel[p, i, 0] + vel[p, i, 1] * vel[p, i, 1]
-                if not (np.isfinite(pos[p, i, 0]) and np.isfinite(pos[p, i, 1])
-                        and np.isfinite(speed2)):
+                if not (
+                    np.isfinite(pos[p, i, 0]) and np.isfinite(pos[p, i, 1]) and np.isfinite(speed2)
+                ):
                     bad = 1
                 elif speed2 > limit and bad == 0:
                     bad = 2

@@ -20,16 +20,13 @@ _S30, _S27, _S31, _S11 = np.uint64(30), np.uint64(27), np.uint64(31), np.uint64(
 _INV53 = 1.0 / 9007199254740992.0  # 2**-53
 
 
-def unit_hash(seed, node, axis, knot):  # type: ignore[no-untyped-def]  # scalars or arrays
+def unit_hash(seed, node, axis, knot):  # scalars or arrays
     """A uniform number in [-1, 1) from uint64 ``seed`` and integer ``node, axis, knot``.
 
     SplitMix64 finaliser over a mix of the inputs; works elementwise on arrays.
     """
     z = (
-        seed
-        ^ (np.uint64(node) * _GOLDEN)
-        ^ (np.uint64(axis) * _AXIS)
-        ^ (np.uint64(knot) * _MIX2)
+        seed ^ (np.uint64(node) * _GOLDEN) ^ (np.uint64(axis) * _AXIS) ^ (np.uint64(knot) * _MIX2)
     ) + _GOLDEN
     z = (z ^ (z >> _S30)) * _MIX1
     z = (z ^ (z >> _S27)) * _MIX2
@@ -37,6 +34,6 @@ def unit_hash(seed, node, axis, knot):  # type: ignore[no-untyped-def]  # scalar
     return (z >> _S11) * _INV53 * 2.0 - 1.0
 
 
-def smoothstep(f):  # type: ignore[no-untyped-def]  # scalars or arrays
+def smoothstep(f):  # scalars or arrays
     """Cubic ease 3f² − 2f³ for f in [0, 1]."""
     return f * f * (3.0 - 2.0 * f)

@@ -19,15 +19,46 @@ def _scatter(target: np.ndarray, body: np.ndarray, node: np.ndarray, value: np.n
     np.add.at(target, (body, node), value)
 
 
-def simulate_reference(  # noqa: PLR0913, PLR0915 - mirrors the kernel's signature
-    pos, vel, status, failed_step,
-    n_nodes, n_edges, n_attr, rest, mass, weight, radius, home, wiggle,
-    edges, rest_length, strength, easing, attraction, attr_strength, attr_reach,
-    drag, seeds, external, start_step, n_steps,
-    dt, gravity, floor, floor_y, friction, restitution, follow_x, follow_y, wiggle_steps,
+def simulate_reference(
+    pos,
+    vel,
+    status,
+    failed_step,
+    n_nodes,
+    n_edges,
+    n_attr,
+    rest,
+    mass,
+    weight,
+    radius,
+    home,
+    wiggle,
+    edges,
+    rest_length,
+    strength,
+    easing,
+    attraction,
+    attr_strength,
+    attr_reach,
+    drag,
+    seeds,
+    external,
+    start_step,
+    n_steps,
+    dt,
+    gravity,
+    floor,
+    floor_y,
+    friction,
+    restitution,
+    follow_x,
+    follow_y,
+    wiggle_steps,
     max_speed,
-    record_stride, rec_pos, rec_force,
-):  # type: ignore[no-untyped-def]
+    record_stride,
+    rec_pos,
+    rec_force,
+):
     """Advance every body ``n_steps`` in place; the arguments are the kernel's."""
     n_bodies, big_n = pos.shape[:2]
     node_ids = np.arange(big_n)
@@ -36,9 +67,7 @@ def simulate_reference(  # noqa: PLR0913, PLR0915 - mirrors the kernel's signatu
     rest_centre = (rest * real[..., None]).sum(axis=1) / count  # (P, 2)
     body_of_edge = np.repeat(np.arange(n_bodies), edges.shape[1]).reshape(edges.shape[:2])
     edge_on = np.arange(edges.shape[1])[None, :] < n_edges[:, None]
-    body_of_attr = np.repeat(np.arange(n_bodies), attraction.shape[1]).reshape(
-        attraction.shape[:2]
-    )
+    body_of_attr = np.repeat(np.arange(n_bodies), attraction.shape[1]).reshape(attraction.shape[:2])
     attr_on = np.arange(attraction.shape[1])[None, :] < n_attr[:, None]
     if rec_pos.shape[0] > 0:
         rec_pos[0] = np.where(real[..., None], pos, rec_pos[0])
