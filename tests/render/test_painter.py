@@ -95,3 +95,15 @@ def test_frame_index_defaults_to_the_middle(dancer: Trajectory) -> None:
     assert frame_index(dancer, -1) == 29
     with pytest.raises(RenderError, match="out of range"):
         frame_index(dancer, 30)
+
+
+def test_onion_skin_puts_the_newest_frame_on_top(dancer: Trajectory) -> None:
+    painter = make_painter(dancer, 320)
+    canvas = RasterCanvas(320, 320)
+    painter.draw(canvas, [0, 8, 15])
+    rgb = canvas.to_array().astype(int)
+    hand = dancer.node_names.index("l_hand")
+    for frame, exact in ((15, True), (0, False)):
+        x, y = np.round(painter.view.to_px(dancer.positions[frame, hand]) - 0.5).astype(int)
+        matches = np.abs(rgb[y, x] - PALETTE[hand].astype(int)).max() <= 3
+        assert matches == exact

@@ -27,9 +27,15 @@ def atomic_output(path: str | os.PathLike[str]) -> Iterator[Path]:
 
     Readers never see a half-written file. An `OSError` in the block (missing
     or read-only directory, full disk) becomes a `RenderError`; on any error
-    the temporary file is removed.
+    the temporary file is removed. A missing or read-only directory is
+    reported before any work is done by the caller's block.
     """
     path = Path(path)
+    parent = path.parent
+    if not parent.is_dir():
+        raise RenderError(f"cannot write {path}: {parent} is not a directory")
+    if not os.access(parent, os.W_OK):
+        raise RenderError(f"cannot write {path}: {parent} is not writable")
     tmp = path.with_name(f".{path.name}.{os.getpid()}.part")
     try:
         yield tmp

@@ -180,22 +180,21 @@ def save_gif(
     """
     step = _frame_step(traj, fps, GIF_MAX_FPS)
     painter = make_painter(traj, size, overlay=overlay, caption=caption, style=style, box=box)
-    images = [
-        Image.fromarray(rgb).quantize(colors=255, method=Image.Quantize.FASTOCTREE)
-        for rgb in iter_frames(traj, painter, step=step)
-    ]
-    if not images:
-        raise RenderError("the trajectory has no frames")
-    # Centisecond ticks (GIF's unit) that keep the total duration in real time.
-    ticks = np.round(np.arange(len(images) + 1) * step / traj.fps * 100.0)
-    durations = [int(10 * max(d, 1)) for d in np.diff(ticks)]
     with atomic_output(path) as tmp:
+        images = [
+            Image.fromarray(rgb).quantize(colors=255, method=Image.Quantize.FASTOCTREE)
+            for rgb in iter_frames(traj, painter, step=step)
+        ]
+        if not images:
+            raise RenderError("the trajectory has no frames")
+        # Centisecond ticks (GIF's unit) that keep the total duration in real time.
+        ticks = np.round(np.arange(len(images) + 1) * step / traj.fps * 100.0)
         images[0].save(
             tmp,
             format="GIF",
             save_all=True,
             append_images=images[1:],
-            duration=durations,
+            duration=[int(10 * max(d, 1)) for d in np.diff(ticks)],
             loop=0,
         )
     return Path(path)

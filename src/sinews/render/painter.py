@@ -167,8 +167,9 @@ class FramePainter:
         canvas.clear(self.style.background)
         if self._floor:
             self._draw_floor(canvas)
-        for age, frame in enumerate(reversed(indices)):
-            self._draw_body(canvas, frame, fade=0.8 * age / len(indices))
+        for age in range(len(indices) - 1, -1, -1):  # oldest first, fainter the older
+            fade = 0.5 + 0.4 * age / len(indices) if age else 0.0
+            self._draw_body(canvas, indices[-1 - age], fade)
         last = indices[-1]
         if self.overlay is not None:
             self._draw_overlay(canvas, last, self.overlay)

@@ -1,0 +1,116 @@
+"""Files: PNG, SVG, GIF, MP4 with sound, and `render`'s dispatch and errors."""
+
+from __future__ import annotations
+
+import re
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import imageio_ffmpeg
+import numpy as np
+import pytest
+from conftest import make_dancer, probe, write_sine_wav
+from PIL import Image
+
+from sinews.render import RenderError, render, save_gif, save_mp4, save_png, save_svg
+from sinews.trajectory import Trajectory
+
+
+def test_png_is_a_picture_of_the_dancer(dancer: Trajectory, tmp_path: Path) -> None:
+    path = save_png(dancer, tmp_path / "d.png", size=(300, 200), caption="t = {time:.2f} s")
+    with Image.open(path) as im:
+        assert im.size == (300, 200) and im.mode == "RGB"
+        rgb = np.asarray(im)
+    assert len(np.unique(rgb.reshape(-1, 3), axis=0)) > 50
+    assert list(tmp_path.iterdir()) == [path]  # no temporary file left behind
+
+
+def test_overlay_png_differs_from_plain(dancer: Trajectory, tmp_path: Path) -> None:
+    plain = np.asarray(Image.open(save_png(dancer, tmp_path / "a.png", frame=3)))
+    debug = np.asarray(Image.open(save_png(dancer, tmp_path / "b.png", frame=3, overlay=True)))
+    assert (plain != debug).any(axis=2).sum() > 500
+
+
+def test_svg_parses_and_holds_the_body(dancer: Trajectory, tmp_path: Path) -> None:
+    path = save_svg(dancer, tmp_path / "d.svg", overlay=True)
+    root = ET.parse(path).getroot()
+    tags = [el.tag.split("}")[1] for el in root]
+    assert tags.count("circle") == dancer.n_nodes
+    assert tags.count("line") >= len(dancer.edges)
+    texts = {el.text for el in root if el.tag.endswith("text")}
+    assert {"head", "l_foot"} <= texts
+
+
+@pytest.mark.parametrize(("fps", "n_frames", "expected"), [(30.0, 30, 30), (60.0, 30, 15)])
+def test_gif_has_one_image_per_kept_frame(
+    tmp_path: Path, fps: float, n_frames: int, expected: int
+) -> None:
+    path = save_gif(make_dancer(n_frames, fps), tmp_path / "d.gif", size=96)
+    with Image.open(path) as im:
+        assert im.n_frames == expected
+        assert im.info["loop"] == 0
+        durations = []
+        for k in range(im.n_frames):
+            im.seek(k)
+            durations.append(im.info["duration"])
+    assert sum(durations) == pytest.approx(1000 * n_frames / fps, abs=10)
+
+
+def test_gif_frame_rate_can_be_lowered(dancer: Trajectory, tmp_path: Path) -> None:
+    with Image.open(save_gif(dancer, tmp_path / "d.gif", size=64, fps=10)) as im:
+        assert im.n_frames == 10
+
+
+def test_mp4_has_an_h264_stream_of_every_frame(dancer: Trajectory, tmp_path: Path) -> None:
+    path = save_mp4(dancer, tmp_path / "d.mp4", size=(101, 75))
+    info = probe(path)
+    assert re.search(r"Video: h264.*yuv420p.*102x76", info)
+    assert "Audio:" not in info
+    frames, _ = imageio_ffmpeg.count_frames_and_secs(str(path))
+    assert frames == dancer.n_frames
+
+
+@pytest.mark.parametrize("offset", [0.0, 0.25, -0.25])
+def test_mp4_carries_the_sound(dancer: Trajectory, tmp_path: Path, offset: float) -> None:
+    wav = write_sine_wav(tmp_path / "tone.wav", seconds=2.0)
+    path = save_mp4(dancer, tmp_path / "d.mp4", size=64, audio=wav, audio_offset=offset)
+    info = probe(path)
+    assert "Video: h264" in info and "Audio: aac" in info
+    _, seconds = imageio_ffmpeg.count_frames_and_secs(str(path))
+    assert seconds == pytest.approx(dancer.duration, abs=0.1)  # -shortest: the picture's length
+
+
+def test_mp4_sound_problems_are_render_errors(dancer: Trajectory, tmp_path: Path) -> None:
+    with pytest.raises(RenderError, match="audio file not found"):
+        save_mp4(dancer, tmp_path / "d.mp4", audio=tmp_path / "missing.wav")
+    junk = tmp_path / "junk.wav"
+    junk.write_text("not a sound file")
+    with pytest.raises(RenderError, match=r"ffmpeg failed: .+") as excinfo:
+        save_mp4(dancer, tmp_path / "d.mp4", size=64, audio=junk)
+    assert "\n" not in str(excinfo.value)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["junk.wav"]
+
+
+@pytest.mark.parametrize("suffix", [".png", ".svg", ".gif", ".mp4"])
+def test_render_dispatches_on_the_suffix(dancer: Trajectory, tmp_path: Path, suffix: str) -> None:
+    path = render(dancer, tmp_path / f"d{suffix.upper()}", size=64)
+    assert path.stat().st_size > 100
+
+
+def test_render_rejects_unknown_suffixes_and_options(dancer: Trajectory, tmp_path: Path) -> None:
+    with pytest.raises(RenderError, match=r"'\.bmp'"):
+        render(dancer, tmp_path / "d.bmp")
+    with pytest.raises(RenderError, match="no suffix"):
+        render(dancer, tmp_path / "d")
+    with pytest.raises(RenderError, match="audio"):
+        render(dancer, tmp_path / "d.png", audio="song.wav")
+
+
+@pytest.mark.parametrize("suffix", [".png", ".svg", ".gif", ".mp4"])
+def test_unwritable_paths_are_render_errors(
+    dancer: Trajectory, tmp_path: Path, suffix: str
+) -> None:
+    (tmp_path / "file").write_text("")
+    for parent in (tmp_path / "missing", tmp_path / "file"):
+        with pytest.raises(RenderError, match="cannot write"):
+            render(dancer, parent / f"d{suffix}", size=32)
