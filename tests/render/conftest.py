@@ -140,16 +140,41 @@ def dancer() -> Trajectory:
     return make_dancer()
 
 
-def write_sine_wav(path: Path, seconds: float, rate: int = 22050, freq: float = 440.0) -> Path:
-    """A mono 16-bit sine tone."""
+def write_sine_wav(
+    path: Path, seconds: float, *, start: float = 0.0, rate: int = 22050, freq: float = 440.0
+) -> Path:
+    """A mono 16-bit sine tone, silent before ``start`` seconds."""
     t = np.arange(int(seconds * rate)) / rate
-    samples = (0.3 * 32767 * np.sin(2 * np.pi * freq * t)).astype("<i2")
+    samples = (0.3 * 32767 * np.sin(2 * np.pi * freq * t) * (t >= start)).astype("<i2")
     with wave.open(str(path), "wb") as wav:
         wav.setnchannels(1)
         wav.setsampwidth(2)
         wav.setframerate(rate)
         wav.writeframes(samples.tobytes())
     return path
+
+
+def decode_audio(path: Path, rate: int = 8000) -> np.ndarray:
+    """The sound track of a media file as mono float samples in [-1, 1]."""
+    result = subprocess.run(
+        [
+            ffmpeg_exe(),
+            "-v",
+            "error",
+            "-i",
+            str(path),
+            "-f",
+            "s16le",
+            "-ac",
+            "1",
+            "-ar",
+            str(rate),
+            "-",
+        ],
+        capture_output=True,
+        check=True,
+    )
+    return np.frombuffer(result.stdout, dtype="<i2") / 32768.0
 
 
 def probe(path: Path) -> str:

@@ -9,8 +9,8 @@ from pathlib import Path
 import imageio_ffmpeg
 import numpy as np
 import pytest
-from conftest import make_dancer, probe, write_sine_wav
-from PIL import Image
+from conftest import decode_audio, make_dancer, probe, write_sine_wav
+from PIL import Image, ImageSequence
 
 from sinews.render import RenderError, render, save_gif, save_mp4, save_png, save_svg
 from sinews.trajectory import Trajectory
@@ -41,24 +41,24 @@ def test_svg_parses_and_holds_the_body(dancer: Trajectory, tmp_path: Path) -> No
     assert {"head", "l_foot"} <= texts
 
 
+def gif_durations(path: Path) -> list[int]:
+    """Milliseconds each image of a GIF is shown."""
+    with Image.open(path) as im:
+        assert im.info["loop"] == 0
+        return [int(frame.info["duration"]) for frame in ImageSequence.Iterator(im)]
+
+
 @pytest.mark.parametrize(("fps", "n_frames", "expected"), [(30.0, 30, 30), (60.0, 30, 15)])
 def test_gif_has_one_image_per_kept_frame(
     tmp_path: Path, fps: float, n_frames: int, expected: int
 ) -> None:
-    path = save_gif(make_dancer(n_frames, fps), tmp_path / "d.gif", size=96)
-    with Image.open(path) as im:
-        assert im.n_frames == expected
-        assert im.info["loop"] == 0
-        durations = []
-        for k in range(im.n_frames):
-            im.seek(k)
-            durations.append(im.info["duration"])
+    durations = gif_durations(save_gif(make_dancer(n_frames, fps), tmp_path / "d.gif", size=96))
+    assert len(durations) == expected
     assert sum(durations) == pytest.approx(1000 * n_frames / fps, abs=10)
 
 
 def test_gif_frame_rate_can_be_lowered(dancer: Trajectory, tmp_path: Path) -> None:
-    with Image.open(save_gif(dancer, tmp_path / "d.gif", size=64, fps=10)) as im:
-        assert im.n_frames == 10
+    assert len(gif_durations(save_gif(dancer, tmp_path / "d.gif", size=64, fps=10))) == 10
 
 
 def test_mp4_has_an_h264_stream_of_every_frame(dancer: Trajectory, tmp_path: Path) -> None:
@@ -78,6 +78,19 @@ def test_mp4_carries_the_sound(dancer: Trajectory, tmp_path: Path, offset: float
     assert "Video: h264" in info and "Audio: aac" in info
     _, seconds = imageio_ffmpeg.count_frames_and_secs(str(path))
     assert seconds == pytest.approx(dancer.duration, abs=0.1)  # -shortest: the picture's length
+
+
+@pytest.mark.parametrize(
+    ("offset", "tone_at"), [(0.0, 0.5), (0.5, 0.0), (0.25, 0.25), (-0.25, 0.75)]
+)
+def test_audio_offset_is_the_song_time_of_frame_zero(
+    tmp_path: Path, offset: float, tone_at: float
+) -> None:
+    wav = write_sine_wav(tmp_path / "late.wav", seconds=3.0, start=0.5)
+    path = save_mp4(make_dancer(45), tmp_path / "d.mp4", size=32, audio=wav, audio_offset=offset)
+    sound = np.abs(decode_audio(path, rate=8000))
+    loud = np.flatnonzero(sound > 0.05)
+    assert loud[0] / 8000 == pytest.approx(tone_at, abs=0.03)
 
 
 def test_mp4_sound_problems_are_render_errors(dancer: Trajectory, tmp_path: Path) -> None:

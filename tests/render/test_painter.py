@@ -38,7 +38,10 @@ def test_default_colours_are_distinct_and_radii_have_a_minimum() -> None:
 def test_floor_is_drawn_only_under_standing_bodies(dancer: Trajectory) -> None:
     assert has_floor(dancer, Style())
     sunk = Trajectory(
-        dancer.positions - np.float32([0.0, 1.0]), dancer.fps, dancer.edges, dancer.node_names
+        dancer.positions - np.array([0.0, 1.0], dtype=np.float32),
+        dancer.fps,
+        dancer.edges,
+        dancer.node_names,
     )
     assert not has_floor(sunk, Style())
     assert has_floor(sunk, Style(floor=True))
