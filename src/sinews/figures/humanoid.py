@@ -105,23 +105,42 @@ def humanoid_mjcf(shape: HumanoidShape = HumanoidShape(), *, friction: float = 1
         legs.append(
             _chain(
                 [
-                    (f"thigh{side}", joint("hip", side), fmt(0, sign * shape.hip_width, 0),
-                     _capsule_down(f"thigh{side}", shape.thigh)),
-                    (f"shin{side}", joint("knee", side), fmt(0, 0, -shape.thigh[0]),
-                     _capsule_down(f"shin{side}", shape.shin)),
-                    (f"foot{side}", joint("ankle", side), fmt(0, 0, -shape.shin[0]),
-                     f'{foot} name="foot{side}"/>'),
+                    (
+                        f"thigh{side}",
+                        joint("hip", side),
+                        fmt(0, sign * shape.hip_width, 0),
+                        _capsule_down(f"thigh{side}", shape.thigh),
+                    ),
+                    (
+                        f"shin{side}",
+                        joint("knee", side),
+                        fmt(0, 0, -shape.thigh[0]),
+                        _capsule_down(f"shin{side}", shape.shin),
+                    ),
+                    (
+                        f"foot{side}",
+                        joint("ankle", side),
+                        fmt(0, 0, -shape.shin[0]),
+                        f'{foot} name="foot{side}"/>',
+                    ),
                 ]
             )
         )
         arms.append(
             _chain(
                 [
-                    (f"upper_arm{side}", joint("shoulder", side),
-                     fmt(0, sign * shape.shoulder_width, shape.torso[0]),
-                     _capsule_down(f"upper_arm{side}", shape.upper_arm)),
-                    (f"forearm{side}", joint("elbow", side), fmt(0, 0, -shape.upper_arm[0]),
-                     _capsule_down(f"forearm{side}", shape.forearm)),
+                    (
+                        f"upper_arm{side}",
+                        joint("shoulder", side),
+                        fmt(0, sign * shape.shoulder_width, shape.torso[0]),
+                        _capsule_down(f"upper_arm{side}", shape.upper_arm),
+                    ),
+                    (
+                        f"forearm{side}",
+                        joint("elbow", side),
+                        fmt(0, 0, -shape.upper_arm[0]),
+                        _capsule_down(f"forearm{side}", shape.forearm),
+                    ),
                 ]
             )
         )

@@ -127,9 +127,7 @@ def rollout(
         SinewsError: mujoco is not installed.
     """
     if n_individuals < 1 or seconds < 0 or control_hz < 1 or physics_hz % control_hz:
-        raise ValueError(
-            "need n_individuals >= 1, seconds >= 0 and control_hz dividing physics_hz"
-        )
+        raise ValueError("need n_individuals >= 1, seconds >= 0 and control_hz dividing physics_hz")
     if record and record_hz <= 0:
         raise ValueError("record_hz must be positive")
     substeps = physics_hz // control_hz
@@ -192,7 +190,9 @@ def _frame_steps(total: int, physics_hz: int, record_hz: float) -> npt.NDArray[n
     return np.round(np.arange(n_frames) * physics_hz / record_hz).astype(np.int64)
 
 
-def _body_positions(model: mujoco.MjModel, qpos: FloatArray, nthread: int) -> npt.NDArray[np.float32]:
+def _body_positions(
+    model: mujoco.MjModel, qpos: FloatArray, nthread: int
+) -> npt.NDArray[np.float32]:
     """(T, P, B, 3) world positions of every body but the world, from (T, P, nq) frames."""
     mujoco = require_mujoco()
     n_frames, n = qpos.shape[:2]
