@@ -12,7 +12,16 @@ import pytest
 from conftest import decode_audio, make_dancer, probe, write_sine_wav
 from PIL import Image, ImageSequence
 
-from sinews.render import RenderError, render, save_gif, save_mp4, save_png, save_svg
+from sinews.render import (
+    RenderError,
+    iter_frames,
+    make_painter,
+    render,
+    save_gif,
+    save_mp4,
+    save_png,
+    save_svg,
+)
 from sinews.trajectory import Trajectory
 
 
@@ -127,3 +136,10 @@ def test_unwritable_paths_are_render_errors(
     for parent in (tmp_path / "missing", tmp_path / "file"):
         with pytest.raises(RenderError, match="cannot write"):
             render(dancer, parent / f"d{suffix}", size=32)
+
+
+def test_iter_frames_yields_rgb_pictures(dancer: Trajectory) -> None:
+    frames = list(iter_frames(make_painter(dancer, (40, 30)), step=4))
+    assert len(frames) == 8
+    assert all(f.shape == (30, 40, 3) and f.dtype == np.uint8 for f in frames)
+    assert not (frames[0] == frames[3]).all()  # the dancer moves

@@ -110,3 +110,16 @@ def test_onion_skin_puts_the_newest_frame_on_top(dancer: Trajectory) -> None:
         x, y = np.round(painter.view.to_px(dancer.positions[frame, hand]) - 0.5).astype(int)
         matches = np.abs(rgb[y, x] - PALETTE[hand].astype(int)).max() <= 3
         assert matches == exact
+
+
+def test_draw_accepts_numpy_and_negative_indices(dancer: Trajectory) -> None:
+    painter = make_painter(dancer, 64)
+    canvas = RasterCanvas(64, 64)
+    painter.draw(canvas, np.int64(-1))
+    last = canvas.to_array()
+    painter.draw(canvas, [29])
+    assert (canvas.to_array() == last).all()
+    with pytest.raises(RenderError):
+        painter.draw(canvas, [])
+    with pytest.raises(RenderError, match="out of range"):
+        painter.draw(canvas, 30)

@@ -76,7 +76,7 @@ def make_painter(
         view = View.fit(bounds, pixels, margin=style.margin)
     else:
         view = View.fit(box, pixels, margin=0.0)
-    chosen = Overlay() if overlay is True else overlay or None
+    chosen = Overlay() if overlay is True else (overlay or None)
     return FramePainter(traj, view, style=style, overlay=chosen, caption=caption)
 
 
@@ -88,15 +88,13 @@ def _frame_step(traj: Trajectory, fps: float | None, cap: float = math.inf) -> i
     return max(1, math.ceil(traj.fps / wanted - 1e-9))
 
 
-def iter_frames(
-    traj: Trajectory, painter: FramePainter, *, step: int = 1
-) -> Iterator[npt.NDArray[np.uint8]]:
-    """Every ``step``-th frame drawn by ``painter``, each (H, W, 3) uint8.
+def iter_frames(painter: FramePainter, *, step: int = 1) -> Iterator[npt.NDArray[np.uint8]]:
+    """Every ``step``-th frame of the painter's trajectory as (H, W, 3) uint8 pictures.
 
     One canvas is reused, so frames cost only drawing and downsampling.
     """
     canvas = RasterCanvas(painter.view.width, painter.view.height)
-    for frame in range(0, traj.n_frames, step):
+    for frame in range(0, painter.traj.n_frames, step):
         painter.draw(canvas, frame)
         yield canvas.to_array()
 
@@ -183,7 +181,7 @@ def save_gif(
     with atomic_output(path) as tmp:
         images = [
             Image.fromarray(rgb).quantize(colors=255, method=Image.Quantize.FASTOCTREE)
-            for rgb in iter_frames(traj, painter, step=step)
+            for rgb in iter_frames(painter, step=step)
         ]
         if not images:
             raise RenderError("the trajectory has no frames")
@@ -241,7 +239,7 @@ def save_mp4(
     painter = make_painter(traj, pixels, overlay=overlay, caption=caption, style=style, box=box)
     with atomic_output(path) as tmp:
         encode_mp4(
-            iter_frames(traj, painter, step=step),
+            iter_frames(painter, step=step),
             tmp,
             size=pixels,
             fps=traj.fps / step,

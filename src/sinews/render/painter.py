@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -147,21 +148,25 @@ class FramePainter:
         assert self.caption is not None
         try:
             return self.caption.format(frame=frame, time=frame / self.traj.fps)
-        except (KeyError, IndexError, ValueError) as exc:
+        except (KeyError, IndexError, ValueError, AttributeError) as exc:
             raise RenderError(
                 f"bad caption {self.caption!r}: use {{frame}} and {{time}} only ({exc})"
             ) from None
 
-    def draw(self, canvas: Canvas, frames: int | Sequence[int]) -> None:
+    def draw(self, canvas: Canvas, frames: int | np.integer[Any] | Sequence[int]) -> None:
         """Draw one frame, or several as onion skin (earlier ones faded, the last on top).
 
         The overlay and caption belong to the last frame.
 
         Args:
             canvas: where to draw; its size should match the view's.
-            frames: frame index, or indices oldest first.
+            frames: frame index, or indices oldest first (negative count from the end).
+
+        Raises:
+            RenderError: no frames, or an index out of range.
         """
-        indices = [frames] if isinstance(frames, int) else list(frames)
+        chosen = [frames] if isinstance(frames, int | np.integer) else list(frames)
+        indices = [frame_index(self.traj, int(f)) for f in chosen]
         if not indices:
             raise RenderError("no frames to draw")
         canvas.clear(self.style.background)
