@@ -29,7 +29,9 @@ class TrajectoryError(SinewsError):
 
 FloatArray = npt.NDArray[np.floating]
 
-_OPTIONAL = ("radii", "colors", "beats", "triggers", "forces", "qpos", "body_pos")
+_OPTIONAL = (
+    "radii", "colors", "beats", "triggers", "trigger_nodes", "forces", "qpos", "body_pos",
+)  # fmt: skip
 
 
 @dataclass(frozen=True, eq=False)
@@ -45,6 +47,7 @@ class Trajectory:
         colors: (N, 3) uint8 RGB, or None.
         beats: (B,) float64 seconds of the music's beats, or None.
         triggers: (T, R) bool, which responder fired in each frame, or None.
+        trigger_nodes: (R,) int node index of each responder in ``triggers``, or None.
         forces: (T, N, 2) float32 newtons on each node (debug overlay), or None.
         qpos: (T, nq) float64 generalised coordinates of a rigid figure, or None.
         body_pos: (T, B, 3) float32 rigid-body positions of a figure, or None.
@@ -59,6 +62,7 @@ class Trajectory:
     colors: npt.NDArray[np.uint8] | None = None
     beats: FloatArray | None = None
     triggers: npt.NDArray[np.bool_] | None = None
+    trigger_nodes: npt.NDArray[np.integer] | None = None
     forces: FloatArray | None = None
     qpos: FloatArray | None = None
     body_pos: FloatArray | None = None
@@ -91,6 +95,12 @@ class Trajectory:
                 raise TrajectoryError(f"{name} must have shape {shape}, got {np.shape(value)}")
         if self.triggers is not None and np.shape(self.triggers)[0] != n_frames:
             raise TrajectoryError("triggers must have one row per frame")
+        if self.trigger_nodes is not None:
+            nodes = np.asarray(self.trigger_nodes)
+            if self.triggers is None or nodes.shape != np.shape(self.triggers)[1:]:
+                raise TrajectoryError("trigger_nodes must name one node per trigger column")
+            if nodes.size and (nodes.min() < 0 or nodes.max() >= n_nodes):
+                raise TrajectoryError("trigger_nodes refer to nodes that do not exist")
         if self.qpos is not None and np.shape(self.qpos)[0] != n_frames:
             raise TrajectoryError("qpos must have one row per frame")
         if self.body_pos is not None and np.shape(self.body_pos)[0] != n_frames:

@@ -9,6 +9,7 @@ import typer
 
 from sinews.dancers import DancerGenome
 from sinews.experiments import dancers as experiment
+from sinews.music.analysis import analyse_file
 from sinews.render import contact_sheet, render
 
 __all__ = ["register"]
@@ -29,7 +30,13 @@ def new(output: Output, seed: Seed = 0) -> None:
 def dance(
     genome: Annotated[Path, typer.Argument(help="Dancer genome JSON.")],
     output: Output,
-    seconds: Annotated[float, typer.Option(help="Length of the dance.")] = 8.0,
+    song: Annotated[
+        Path | None, typer.Option(help="Music to dance to (WAV, FLAC, OGG, MP3, M4A).")
+    ] = None,
+    seconds: Annotated[
+        float | None, typer.Option(help="Length of the dance (default: the song, or 8 s).")
+    ] = None,
+    bpm: Annotated[float | None, typer.Option(help="Override the detected tempo.")] = None,
     seed: Seed = 0,
     trajectory: Annotated[
         Path | None, typer.Option(help="Also save the motion as a .npz trajectory.")
@@ -37,13 +44,19 @@ def dance(
     debug_overlay: Annotated[bool, typer.Option(help="Draw node labels and force arrows.")] = False,
     size: Annotated[int, typer.Option(help="Picture size in pixels.")] = 480,
 ) -> None:
-    """Let a dancer dance and draw it (.png, .svg, .gif or .mp4)."""
+    """Let a dancer dance and draw it (.png, .svg, .gif, or .mp4 with the song as sound)."""
     dancer = DancerGenome.load(genome)
-    (traj,) = experiment.dance([dancer], seconds, seeds=[seed], record_forces=debug_overlay)
+    music = None if song is None else analyse_file(song, bpm=bpm)
+    if seconds is None and music is None:
+        seconds = 8.0
+    (traj,) = experiment.dance(
+        [dancer], seconds, music=music, seeds=[seed], record_forces=debug_overlay
+    )
     if trajectory is not None:
         traj.save(trajectory)
         typer.echo(f"wrote {trajectory}")
-    path = render(traj, output, overlay=debug_overlay, size=size)
+    sound = {"audio": song} if song is not None and output.suffix.lower() == ".mp4" else {}
+    path = render(traj, output, overlay=debug_overlay, size=size, **sound)
     typer.echo(f"wrote {path}")
 
 

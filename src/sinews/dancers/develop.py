@@ -18,12 +18,14 @@ import numpy as np
 import numpy.typing as npt
 
 from sinews.dancers.genome import DancerGenome
+from sinews.dancers.responders import SPECIES, responders
 from sinews.dancers.skeleton import EDGE_NAMES, EDGES, NODES, EdgeKind, edge_kind
+from sinews.music.spectrum import DEFAULT_BANDS
 from sinews.springmass import Body, EngineParams
 
 __all__ = ["DANCER_ENGINE", "develop"]
 
-DANCER_ENGINE = EngineParams(dt=1.0 / 60.0, home_follow=(1.0, 0.0), friction=0.35)
+DANCER_ENGINE = EngineParams(dt=1.0 / 60.0, home_follow=(0.97, 0.0), friction=0.35)
 """Engine settings dancers are tuned for: home follows the body sideways (it can
 travel) but holds it up against gravity (it stays standing)."""
 
@@ -98,15 +100,17 @@ def _colors(g: dict[str, float], node_genes: npt.NDArray[np.float64]) -> npt.NDA
     return np.clip(np.round(np.array(rgb) * 255), 0, 255).astype(np.uint8)
 
 
-def develop(genome: DancerGenome, *, x: float = 0.0) -> Body:
+def develop(genome: DancerGenome, *, x: float = 0.0, n_bands: int = DEFAULT_BANDS) -> Body:
     """Grow the dancer's body, standing on the floor centred at ``x`` metres.
 
     Args:
         genome: the DNA.
         x: horizontal position of the body's centre line.
+        n_bands: bands of the music analysis its responders will listen to.
 
     Returns:
-        A `Body` with the nodes of `NODES` and the springs of `EDGE_NAMES`.
+        A `Body` with the nodes of `NODES`, the springs of `EDGE_NAMES`, and
+        one actuator per filled responder slot (drive channel = music band).
     """
     g = genome.body
     pose = _rest_pose(g)
@@ -138,6 +142,7 @@ def develop(genome: DancerGenome, *, x: float = 0.0) -> Body:
 
     home = mass * float(_lerp(10.0, 18.0, g["groundedness"])) ** 2
     wiggle = mass * float(_lerp(0.0, 3.0, g["jitter"]))
+    slots = responders(genome, n_bands)
     return Body(
         names=NODES,
         rest=rest,
@@ -152,4 +157,9 @@ def develop(genome: DancerGenome, *, x: float = 0.0) -> Body:
         wiggle=wiggle,
         drag=float(_lerp(0.01, 0.08, g["drag"])),
         colors=_colors(g, node_genes),
+        actuator_node=[r.node for r in slots],
+        actuator_kind=[SPECIES[r.species] for r in slots],
+        actuator_channels=[r.bands for r in slots],
+        actuator_strength=[r.strength for r in slots],
+        actuator_custom=[r.custom for r in slots],
     )

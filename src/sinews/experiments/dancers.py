@@ -2,13 +2,16 @@
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 
 import numpy as np
 
 from sinews.dancers import DANCER_ENGINE, DancerGenome, develop
 from sinews.errors import SinewsError
-from sinews.springmass import BodyBatch, simulate
+from sinews.music.features import MusicFeatures
+from sinews.music.spectrum import DEFAULT_BANDS
+from sinews.springmass import Body, BodyBatch, Recording, SimState, simulate
 from sinews.trajectory import Trajectory
 
 __all__ = ["MAX_SECONDS", "dance", "new_genome", "random_genomes"]
@@ -32,8 +35,10 @@ def random_genomes(seed: int, count: int) -> list[DancerGenome]:
 
 def dance(
     genomes: Sequence[DancerGenome],
-    seconds: float,
+    seconds: float | None = None,
     *,
+    music: MusicFeatures | None = None,
+    responders: bool = True,
     seeds: Sequence[int] | None = None,
     record_forces: bool = False,
 ) -> list[Trajectory]:
@@ -41,20 +46,69 @@ def dance(
 
     Args:
         genomes: the dancers.
-        seconds: length of the dance.
+        seconds: length of the dance (default: the whole song).
+        music: the analysed song their responders listen to; without it they
+            move only by wiggle and home.
+        responders: False switches every responder off (to hear what the music adds).
         seeds: one wiggle-noise seed per dancer (default 0 for all); a dancer's
-            motion depends only on its genome and its seed.
+            motion depends only on its genome, its seed and the music.
         record_forces: keep per-node forces for the debug overlay.
 
     Returns:
-        Trajectories at the engine's 60 frames per second, frame 0 the rest pose.
+        Trajectories at the engine's 60 frames per second, frame 0 the rest
+        pose; with music they carry its beats and each responder's triggers.
     """
+    if seconds is None:
+        if music is None:
+            raise SinewsError("give the dance a length in seconds or a song")
+        seconds = music.duration
     if not 0 < seconds <= MAX_SECONDS:
         raise SinewsError(f"seconds must be in (0, {MAX_SECONDS:g}], got {seconds:g}")
-    batch = BodyBatch.from_bodies([develop(g) for g in genomes], seeds=seeds)
+    n_bands = DEFAULT_BANDS if music is None else music.n_bands
+    bodies = [develop(g, n_bands=n_bands) for g in genomes]
+    if not responders:
+        bodies = [_without_actuators(b) for b in bodies]
+    batch = BodyBatch.from_bodies(bodies, seeds=seeds)
+    if music is not None and music.fps * DANCER_ENGINE.dt != 1.0:
+        raise SinewsError(f"the song was analysed at {music.fps:g} fps; dancers step at 60")
     n_steps = max(1, round(seconds / DANCER_ENGINE.dt))
     state, recording = simulate(
-        batch, batch.initial_state(), n_steps, DANCER_ENGINE, record_forces=record_forces
+        batch,
+        batch.initial_state(),
+        n_steps,
+        DANCER_ENGINE,
+        drive=None if music is None else music.activation,
+        phase=None if music is None else music.beat_phase,
+        record_forces=record_forces,
     )
     assert recording is not None
-    return [recording.trajectory(batch, state, p) for p in range(batch.size)]
+    return [_trajectory(recording, batch, state, p, music) for p in range(batch.size)]
+
+
+def _without_actuators(body: Body) -> Body:
+    empty = np.zeros(0)
+    return dataclasses.replace(
+        body,
+        actuator_node=empty,
+        actuator_kind=empty,
+        actuator_channels=np.zeros((0, 2)),
+        actuator_strength=empty,
+        actuator_custom=empty,
+    )
+
+
+def _trajectory(
+    recording: Recording, batch: BodyBatch, state: SimState, index: int, music: MusicFeatures | None
+) -> Trajectory:
+    traj = recording.trajectory(batch, state, index)
+    if music is None:
+        return traj
+    body = batch.bodies[index]
+    frames = np.minimum(np.arange(traj.n_frames), len(music.triggers) - 1)
+    fired = np.zeros((traj.n_frames, body.n_actuators), dtype=bool)
+    for r, (lo, hi) in enumerate(body.actuator_channels):
+        fired[:, r] = music.triggers[frames, lo : hi + 1].any(axis=1)
+    fired[np.arange(traj.n_frames) >= len(music.triggers)] = False
+    return dataclasses.replace(
+        traj, beats=music.beats, triggers=fired, trigger_nodes=body.actuator_node
+    )

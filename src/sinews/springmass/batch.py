@@ -85,6 +85,8 @@ class BodyBatch:
         rest: (P, N, 2); mass, weight, radius, home, wiggle: (P, N).
         edges: (P, E, 2); rest_length, strength, easing: (P, E).
         attraction: (P, A, 2); attraction_strength, attraction_reach: (P, A).
+        n_actuators: (P,); actuator_node, actuator_kind: (P, R) int;
+        actuator_channels: (P, R, 2); actuator_strength, actuator_custom: (P, R).
         drag: (P,); seeds: (P,) uint64 wiggle-noise seeds.
         bodies: the bodies it was built from.
     """
@@ -106,6 +108,12 @@ class BodyBatch:
     attraction: IntArray
     attraction_strength: FloatArray
     attraction_reach: FloatArray
+    n_actuators: IntArray
+    actuator_node: IntArray
+    actuator_kind: IntArray
+    actuator_channels: IntArray
+    actuator_strength: FloatArray
+    actuator_custom: FloatArray
     drag: FloatArray
     seeds: npt.NDArray[np.uint64] = field(repr=False)
 
@@ -123,11 +131,9 @@ class BodyBatch:
         n_nodes = np.array([b.n_nodes for b in bodies], dtype=np.int64)
         n_edges = np.array([b.n_edges for b in bodies], dtype=np.int64)
         n_attr = np.array([len(b.attraction) for b in bodies], dtype=np.int64)
-        big_n, big_e, big_a = (
-            int(n_nodes.max()),
-            max(1, int(n_edges.max())),
-            max(1, int(n_attr.max())),
-        )
+        n_act = np.array([b.n_actuators for b in bodies], dtype=np.int64)
+        big_n = int(n_nodes.max())
+        big_e, big_a, big_r = (max(1, int(n.max())) for n in (n_edges, n_attr, n_act))
 
         def pad(
             name: str, shape: tuple[int, ...], fill: float, dtype: type = np.float64
@@ -156,6 +162,12 @@ class BodyBatch:
             attraction=pad("attraction", (big_a, 2), 0, np.int64),
             attraction_strength=pad("attraction_strength", (big_a,), 0.0),
             attraction_reach=pad("attraction_reach", (big_a,), 0.0),
+            n_actuators=n_act,
+            actuator_node=pad("actuator_node", (big_r,), 0, np.int64),
+            actuator_kind=pad("actuator_kind", (big_r,), 0, np.int64),
+            actuator_channels=pad("actuator_channels", (big_r, 2), 0, np.int64),
+            actuator_strength=pad("actuator_strength", (big_r,), 0.0),
+            actuator_custom=pad("actuator_custom", (big_r,), 0.0),
             drag=np.array([b.drag for b in bodies], dtype=np.float64),
             seeds=np.array([s & 0xFFFFFFFFFFFFFFFF for s in seeds], dtype=np.uint64),
         )

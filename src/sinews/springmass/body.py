@@ -8,6 +8,7 @@ import numpy as np
 import numpy.typing as npt
 
 from sinews.errors import SinewsError
+from sinews.springmass.actuators import ActuatorKind
 
 __all__ = ["Body", "BodyError"]
 
@@ -56,6 +57,11 @@ class Body:
         attraction_strength: (A,) newtons.
         attraction_reach: (A,) metres; beyond it a pair pulls not at all.
         colors: (N, 3) uint8 RGB for drawing.
+        actuator_node: (R,) node each actuator sits on (see `sinews.springmass.actuators`).
+        actuator_kind: (R,) `ActuatorKind` codes.
+        actuator_channels: (R, 2) first and last drive channel each actuator reads.
+        actuator_strength: (R,) newtons at drive 1, >= 0.
+        actuator_custom: (R,) tuning value of each actuator's kind, in [0, 1].
     """
 
     names: tuple[str, ...]
@@ -74,6 +80,11 @@ class Body:
     attraction_strength: FloatArray = field(default_factory=lambda: np.zeros(0))
     attraction_reach: FloatArray = field(default_factory=lambda: np.zeros(0))
     colors: npt.NDArray[np.uint8] | None = None
+    actuator_node: IntArray = field(default_factory=lambda: np.zeros(0, np.int64))
+    actuator_kind: IntArray = field(default_factory=lambda: np.zeros(0, np.int64))
+    actuator_channels: IntArray = field(default_factory=lambda: np.zeros((0, 2), np.int64))
+    actuator_strength: FloatArray = field(default_factory=lambda: np.zeros(0))
+    actuator_custom: FloatArray = field(default_factory=lambda: np.zeros(0))
 
     def __post_init__(self) -> None:
         names = tuple(str(n) for n in self.names)
@@ -111,11 +122,41 @@ class Body:
         set_(self, "attraction", pairs)
         for name in ("attraction_strength", "attraction_reach"):
             set_(self, name, _float_array(getattr(self, name), (len(pairs),), name))
+        self._check_actuators()
         if self.colors is not None:
             colors = np.asarray(self.colors)
             if colors.shape != (n, 3):
                 raise BodyError(f"colors must have shape {(n, 3)}, got {colors.shape}")
             set_(self, "colors", colors.astype(np.uint8))
+
+    def _check_actuators(self) -> None:
+        set_ = object.__setattr__
+        nodes = np.array(self.actuator_node, dtype=np.int64).reshape(-1)
+        n_act = len(nodes)
+        if n_act and (nodes.min() < 0 or nodes.max() >= self.n_nodes):
+            raise BodyError("actuator_node refers to nodes that do not exist")
+        kinds = np.array(self.actuator_kind, dtype=np.int64).reshape(-1)
+        channels = np.array(self.actuator_channels, dtype=np.int64).reshape(-1, 2)
+        if kinds.shape != (n_act,) or channels.shape != (n_act, 2):
+            raise BodyError("actuator arrays must have one entry per actuator")
+        if n_act and (kinds.min() < 0 or kinds.max() > max(ActuatorKind)):
+            raise BodyError("actuator_kind must be an ActuatorKind code")
+        if np.any(channels[:, 0] < 0) or np.any(channels[:, 1] < channels[:, 0]):
+            raise BodyError("actuator_channels must be ranges 0 <= first <= last")
+        set_(self, "actuator_node", nodes)
+        set_(self, "actuator_kind", kinds)
+        set_(self, "actuator_channels", channels)
+        for name in ("actuator_strength", "actuator_custom"):
+            set_(self, name, _float_array(getattr(self, name), (n_act,), name))
+        if np.any(self.actuator_strength < 0):
+            raise BodyError("actuator_strength must be >= 0")
+        if np.any((self.actuator_custom < 0) | (self.actuator_custom > 1)):
+            raise BodyError("actuator_custom must be in [0, 1]")
+
+    @property
+    def n_actuators(self) -> int:
+        """Number of actuators R."""
+        return len(self.actuator_node)
 
     @classmethod
     def build(

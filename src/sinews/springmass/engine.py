@@ -56,6 +56,8 @@ def simulate(
     params: EngineParams | None = None,
     *,
     external: npt.ArrayLike | None = None,
+    drive: npt.ArrayLike | None = None,
+    phase: npt.ArrayLike | None = None,
     record: bool = True,
     record_stride: int = 1,
     record_forces: bool = False,
@@ -70,6 +72,9 @@ def simulate(
         params: engine settings (defaults: 60 Hz, gravity, floor).
         external: caller forces in newtons, (P, N, 2) for every step or
             (n_steps, P, N, 2) one row per step.
+        drive: (D, C) values >= 0 that drive the actuators; row k is read at
+            global step k (``state.step`` counts from 0), none after the last row.
+        phase: (D,) phase signal in [0, 1) for SWAY actuators (default zeros).
         record: keep the positions every ``record_stride`` steps.
         record_forces: also keep the net force on each node (debug overlay).
         backend: ``"numba"`` (fast) or ``"numpy"`` (the reference).
@@ -88,6 +93,7 @@ def simulate(
     if state.positions.shape != (n_bodies, big_n, 2):
         raise BodyError("state does not belong to this batch")
     ext = _external(external, n_steps, (n_bodies, big_n, 2))
+    drive_table, phase_row = _drive(batch, drive, phase)
     new = state.copy()
     n_rec = n_steps // record_stride + 1 if record else 0
     rec_pos = np.zeros((n_rec, n_bodies, big_n, 2), dtype=np.float32)
@@ -99,7 +105,9 @@ def simulate(
         batch.weight, batch.radius, batch.home, batch.wiggle,
         batch.edges, batch.rest_length, batch.strength, batch.easing,
         batch.attraction, batch.attraction_strength, batch.attraction_reach,
-        batch.drag, batch.seeds, ext, state.step, n_steps,
+        batch.drag, batch.seeds, batch.n_actuators, batch.actuator_node, batch.actuator_kind,
+        batch.actuator_channels, batch.actuator_strength, batch.actuator_custom,
+        drive_table, phase_row, ext, state.step, n_steps,
         params.dt, params.gravity, params.floor, params.floor_y, params.friction,
         params.restitution, *params.home_follow, params.wiggle_steps, params.max_speed,
         record_stride, rec_pos, rec_force,
@@ -109,6 +117,25 @@ def simulate(
         return new, None
     fps = 1.0 / (params.dt * record_stride)
     return new, Recording(rec_pos, rec_force if record_forces else None, fps)
+
+
+def _drive(
+    batch: BodyBatch, drive: npt.ArrayLike | None, phase: npt.ArrayLike | None
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    table = np.zeros((0, 1)) if drive is None else np.asarray(drive, dtype=np.float64)
+    if table.ndim != 2:
+        raise BodyError(f"drive must have shape (steps, channels), got {table.shape}")
+    if not np.all(np.isfinite(table)) or (table.size and table.min() < 0):
+        raise BodyError("drive values must be finite and >= 0")
+    used = batch.n_actuators > 0
+    if drive is not None and used.any():
+        highest = max(int(b.actuator_channels[:, 1].max()) for b in batch.bodies if b.n_actuators)
+        if highest >= table.shape[1]:
+            raise BodyError(f"an actuator reads channel {highest}; drive has {table.shape[1]}")
+    row = np.zeros(len(table)) if phase is None else np.asarray(phase, dtype=np.float64)
+    if row.shape != (len(table),):
+        raise BodyError(f"phase must have shape ({len(table)},), got {row.shape}")
+    return np.ascontiguousarray(table), row
 
 
 def _external(

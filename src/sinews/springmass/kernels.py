@@ -3,7 +3,7 @@
 Per step (seed 000, "Animating tensegrity objects"):
   1. clear forces;
   2. force rules: gravity x weight, home (toward the rest pose, optionally
-     following the centroid), wiggle, attraction, external;
+     following the centroid), wiggle, attraction, actuators, external;
   3. springs: each edge pushes/pulls its ends by strength x (length - ideal);
   4. integrate v += F/m dt, x += v dt;
   5. easing: move edge ends toward the ideal length by ``easing`` of the error;
@@ -18,9 +18,10 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
+from sinews.springmass.actuators import ActuatorKind, actuator_force
 from sinews.springmass.noise import smoothstep, unit_hash
 
-__all__ = ["ATTRACTION_SOFTNESS", "EDGE_EPSILON", "simulate_kernel"]
+__all__ = ["ATTRACTION_SOFTNESS", "EDGE_EPSILON", "actuate", "simulate_kernel"]
 
 EDGE_EPSILON = 1e-9
 """Added to every edge length so a collapsed edge never divides by zero."""
@@ -28,8 +29,74 @@ EDGE_EPSILON = 1e-9
 ATTRACTION_SOFTNESS = 0.05
 """Metres under which an attraction fades linearly to zero (no jitter at contact)."""
 
+_PULSE = int(ActuatorKind.PULSE)
 _hash = njit(cache=True, inline="always")(unit_hash)
 _smooth = njit(cache=True, inline="always")(smoothstep)
+
+
+@njit(cache=True)
+def actuate(
+    p,
+    n,
+    step,
+    t,
+    pos,
+    force,
+    n_edges,
+    edges,
+    n_act,
+    act_node,
+    act_kind,
+    act_channels,
+    act_strength,
+    act_custom,
+    drive,
+    phase,
+):
+    """Add body ``p``'s actuator forces at ``step`` into ``force`` (N, 2)."""
+    cx = 0.0
+    cy = 0.0
+    for i in range(n):
+        cx += pos[p, i, 0]
+        cy += pos[p, i, 1]
+    cx /= n
+    cy /= n
+    for r in range(n_act[p]):
+        level = 0.0
+        for c in range(act_channels[p, r, 0], act_channels[p, r, 1] + 1):
+            level = max(level, drive[step, c])
+        if level <= 0.0:
+            continue
+        i = act_node[p, r]
+        if act_kind[p, r] == _PULSE:
+            mag = act_strength[p, r] * level * (1.0 if act_custom[p, r] >= 0.5 else -1.0)
+            for e in range(n_edges[p]):
+                if edges[p, e, 0] == i:
+                    other = edges[p, e, 1]
+                elif edges[p, e, 1] == i:
+                    other = edges[p, e, 0]
+                else:
+                    continue
+                dx = pos[p, other, 0] - pos[p, i, 0]
+                dy = pos[p, other, 1] - pos[p, i, 1]
+                length = np.sqrt(dx * dx + dy * dy) + EDGE_EPSILON
+                force[other, 0] += mag * dx / length
+                force[other, 1] += mag * dy / length
+                force[i, 0] -= mag * dx / length
+                force[i, 1] -= mag * dy / length
+        else:
+            fx, fy = actuator_force(
+                act_kind[p, r],
+                level,
+                act_strength[p, r],
+                act_custom[p, r],
+                pos[p, i, 0] - cx,
+                pos[p, i, 1] - cy,
+                t,
+                phase[step],
+            )
+            force[i, 0] += fx
+            force[i, 1] += fy
 
 
 @njit(cache=True, parallel=True, fastmath=False)
@@ -56,6 +123,14 @@ def simulate_kernel(
     attr_reach,
     drag,
     seeds,
+    n_act,
+    act_node,
+    act_kind,
+    act_channels,
+    act_strength,
+    act_custom,
+    drive,
+    phase,
     external,
     start_step,
     n_steps,
@@ -78,6 +153,8 @@ def simulate_kernel(
     Args:
         pos, vel: (P, N, 2) float64, updated in place.
         status, failed_step: (P,) int8 and int64, updated in place.
+        drive: (D, C) actuator drive table, row = global step (none after row D - 1).
+        phase: (D,) phase signal in [0, 1) for SWAY actuators.
         external: (S, P, N, 2) caller forces; S = 0 none, 1 constant, n_steps per step.
         rec_pos: (R, P, N, 2) float32 with R = n_steps // record_stride + 1, or R = 0.
         rec_force: like rec_pos (net force in the step after each record), or R = 0.
@@ -86,6 +163,7 @@ def simulate_kernel(
     n_bodies = pos.shape[0]
     big_n = pos.shape[1]
     n_ext = external.shape[0]
+    n_drive = drive.shape[0]
     n_rec = rec_pos.shape[0]
     keep_forces = rec_force.shape[0] > 0
     for p in prange(n_bodies):
@@ -154,6 +232,25 @@ def simulate_kernel(
                     mag = attr_strength[p, a] * min(1.0, dist / ATTRACTION_SOFTNESS) / dist
                     force[i, 0] += mag * dx
                     force[i, 1] += mag * dy
+            if n_act[p] > 0 and step < n_drive:
+                actuate(
+                    p,
+                    n,
+                    step,
+                    step * dt,
+                    pos,
+                    force,
+                    n_edges,
+                    edges,
+                    n_act,
+                    act_node,
+                    act_kind,
+                    act_channels,
+                    act_strength,
+                    act_custom,
+                    drive,
+                    phase,
+                )
             # 3. springs
             for e in range(n_edges[p]):
                 i = edges[p, e, 0]

@@ -3,13 +3,15 @@
 Same maths as `sinews.springmass.kernels.simulate_kernel`, same argument list,
 written for clarity rather than speed (it loops over steps in Python and uses
 ``np.add.at`` for the scatter). Benchmarks measure the kernel against it.
+Actuators are the one part it shares with the kernel: it calls the pure-Python
+body of `kernels.actuate` (their force patterns have tests of their own).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from sinews.springmass.kernels import ATTRACTION_SOFTNESS, EDGE_EPSILON
+from sinews.springmass.kernels import ATTRACTION_SOFTNESS, EDGE_EPSILON, actuate
 from sinews.springmass.noise import smoothstep, unit_hash
 
 __all__ = ["simulate_reference"]
@@ -42,6 +44,14 @@ def simulate_reference(
     attr_reach,
     drag,
     seeds,
+    n_act,
+    act_node,
+    act_kind,
+    act_channels,
+    act_strength,
+    act_custom,
+    drive,
+    phase,
     external,
     start_step,
     n_steps,
@@ -97,6 +107,11 @@ def simulate_reference(
         mag = attr_strength * np.minimum(1.0, dist / ATTRACTION_SOFTNESS) / dist
         mag = np.where(attr_on & (dist < attr_reach), mag, 0.0)
         _scatter(force, body_of_attr, i, mag[..., None] * d)
+        if step < drive.shape[0]:
+            for p in np.flatnonzero(n_act > 0):
+                actuate.py_func(p, n_nodes[p], step, step * dt, pos, force[p], n_edges, edges,
+                                n_act, act_node, act_kind, act_channels, act_strength,
+                                act_custom, drive, phase)  # fmt: skip
         # 3. springs
         i, j = edges[..., 0], edges[..., 1]
         d = np.take_along_axis(pos, j[..., None], 1) - np.take_along_axis(pos, i[..., None], 1)
