@@ -130,11 +130,14 @@ class FramePainter:
         return self.overlay.arrow_length * self._side / float(np.percentile(magnitude, 90))
 
     def _check_responders(self) -> npt.NDArray[np.int64] | None:
-        if self.overlay is None or self.overlay.responder_nodes is None:
+        if self.overlay is None or self.traj.triggers is None:
             return None
-        if self.traj.triggers is None:
+        given = self.overlay.responder_nodes
+        if given is None:
+            given = self.traj.trigger_nodes
+        if given is None:
             return None
-        nodes = np.asarray(self.overlay.responder_nodes, dtype=np.int64).reshape(-1)
+        nodes = np.asarray(given, dtype=np.int64).reshape(-1)
         n_responders = np.shape(self.traj.triggers)[1]
         if nodes.size != n_responders:
             raise RenderError(

@@ -57,9 +57,9 @@ class Overlay:
             ``arrow_length`` long.
         arrow_length: that typical arrow, fraction of the smaller canvas side.
         max_arrow: arrows are clipped to this many ``arrow_length``.
-        responder_nodes: (R,) node index of each responder; with the
-            trajectory's triggers (T, R), nodes whose responder fires in a frame
-            get a ring.
+        responder_nodes: (R,) node index of each responder (default: the
+            trajectory's ``trigger_nodes``); with its triggers (T, R), nodes
+            whose responder fires in a frame get a ring.
         arrow_color: force arrows.
         ring_color: rings of firing responders.
     """
