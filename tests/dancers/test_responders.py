@@ -44,7 +44,8 @@ def fake_music(active_bands: list[int], frames: int = 600, every: int = 30) -> M
     return MusicFeatures(
         fps=60.0, duration=frames / 60.0, band_edges_hz=edges,
         band_centres_hz=np.sqrt(edges[:-1] * edges[1:]),
-        levels=np.zeros((frames, N_BANDS), np.float32), onset=np.zeros((frames, N_BANDS), np.float32),
+        levels=np.zeros((frames, N_BANDS), np.float32),
+        onset=np.zeros((frames, N_BANDS), np.float32),
         triggers=triggers, activation=activation, tempo_bpm=120.0,
         beats=np.arange(0, frames, every) / 60.0,
         beat_phase=(since / every).astype(np.float32), song_hash="test",
@@ -79,7 +80,7 @@ def test_random_genomes_carry_a_handful_of_responders() -> None:
 def test_a_responder_ignores_music_outside_its_bands() -> None:
     genes = {"species": species_gene("kick"), "pitch": 0.1, "width": 0.0, "strength": 1.0}
     genome = genome_with({("r_hand", 0): genes})
-    (lo, hi), other = band_for_pitch(0.1, 0.0, N_BANDS), N_BANDS - 1
+    (lo, _), other = band_for_pitch(0.1, 0.0, N_BANDS), N_BANDS - 1
     silent = dance([genome], 10.0)[0]
     elsewhere = dance([genome], 10.0, music=fake_music([other]))[0]
     np.testing.assert_array_equal(silent.positions, elsewhere.positions)

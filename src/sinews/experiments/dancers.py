@@ -11,7 +11,7 @@ from sinews.dancers import DANCER_ENGINE, DancerGenome, develop
 from sinews.errors import SinewsError
 from sinews.music.features import MusicFeatures
 from sinews.music.spectrum import DEFAULT_BANDS
-from sinews.springmass import Body, BodyBatch, Recording, SimState, simulate
+from sinews.springmass import BodyBatch, Recording, SimState, simulate
 from sinews.trajectory import Trajectory
 
 __all__ = ["MAX_SECONDS", "dance", "new_genome", "random_genomes"]
@@ -67,7 +67,7 @@ def dance(
     n_bands = DEFAULT_BANDS if music is None else music.n_bands
     bodies = [develop(g, n_bands=n_bands) for g in genomes]
     if not responders:
-        bodies = [_without_actuators(b) for b in bodies]
+        bodies = [b.without_actuators() for b in bodies]
     batch = BodyBatch.from_bodies(bodies, seeds=seeds)
     if music is not None and music.fps * DANCER_ENGINE.dt != 1.0:
         raise SinewsError(f"the song was analysed at {music.fps:g} fps; dancers step at 60")
@@ -83,18 +83,6 @@ def dance(
     )
     assert recording is not None
     return [_trajectory(recording, batch, state, p, music) for p in range(batch.size)]
-
-
-def _without_actuators(body: Body) -> Body:
-    empty = np.zeros(0)
-    return dataclasses.replace(
-        body,
-        actuator_node=empty,
-        actuator_kind=empty,
-        actuator_channels=np.zeros((0, 2)),
-        actuator_strength=empty,
-        actuator_custom=empty,
-    )
 
 
 def _trajectory(

@@ -132,7 +132,7 @@ class FramePainter:
     def _check_responders(self) -> npt.NDArray[np.int64] | None:
         if self.overlay is None or self.traj.triggers is None:
             return None
-        given = self.overlay.responder_nodes
+        given: npt.ArrayLike | None = self.overlay.responder_nodes
         if given is None:
             given = self.traj.trigger_nodes
         if given is None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -152,6 +153,17 @@ class Body:
             raise BodyError("actuator_strength must be >= 0")
         if np.any((self.actuator_custom < 0) | (self.actuator_custom > 1)):
             raise BodyError("actuator_custom must be in [0, 1]")
+
+    def without_actuators(self) -> Body:
+        """The same body with every actuator removed."""
+        return dataclasses.replace(
+            self,
+            actuator_node=np.zeros(0, np.int64),
+            actuator_kind=np.zeros(0, np.int64),
+            actuator_channels=np.zeros((0, 2), np.int64),
+            actuator_strength=np.zeros(0),
+            actuator_custom=np.zeros(0),
+        )
 
     @property
     def n_actuators(self) -> int:
