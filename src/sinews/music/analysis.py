@@ -1,0 +1,211 @@
+"""Analyse a song once, at the simulation frame rate, into `MusicFeatures` (cached on disk).
+
+The steps: log-spaced band powers from a windowed STFT (`spectrum`), levels in
+dB relative to the song's loudness reference (the 99th percentile of all band
+levels, so mastering loudness cancels out), per-band onsets and adaptive
+triggers (`onsets`), tempo and beats (`beats`).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import logging
+import math
+import os
+from pathlib import Path
+
+import numpy as np
+import numpy.typing as npt
+
+from sinews.music.beats import beat_phase, estimate_tempo, onset_envelope, track_beats
+from sinews.music.decode import Audio, check_readable_file, load_audio
+from sinews.music.errors import AudioError
+from sinews.music.features import ANALYSIS_VERSION, MusicFeatures
+from sinews.music.onsets import TriggerParams, activation, adaptive_triggers, onset_strength
+from sinews.music.spectrum import band_centres, band_edges, band_power, window_length
+
+__all__ = ["analyse", "analyse_file", "default_cache_dir"]
+
+LEVEL_FLOOR_DB = -80.0
+"""Levels never go below this many dB under the song's loudness reference."""
+
+SILENCE_DB = -80.0
+"""A song whose loudness reference is below this (dB re a full-scale sine) counts as silent."""
+
+REFERENCE_PERCENTILE = 99.0
+LEVEL_WINDOW_S = 0.075
+"""Levels use ~75 ms windows (4096 samples at 44.1/48 kHz): whole tones apart at 30 Hz."""
+
+ONSET_WINDOW_S = 0.023
+"""Onsets use ~23 ms windows (1024 samples at 44.1 kHz): a long window's log level
+starts rising as soon as its edge touches a loud sound, half a window early."""
+
+ONSET_FLOOR_DB = -60.0
+"""Onsets are measured on levels floored here, so faint sounds rising out of
+silence do not outweigh loud ones."""
+_TRIGGERS = TriggerParams()
+_POWER_FLOOR = 1e-12
+_log = logging.getLogger(__name__)
+
+
+def analyse(
+    audio: Audio,
+    *,
+    fps: float = 60.0,
+    n_bands: int = 56,
+    bpm: float | None = None,
+    song_hash: str | None = None,
+) -> MusicFeatures:
+    """Analyse decoded audio into per-frame band levels, onsets, triggers and beats.
+
+    Args:
+        audio: the decoded song.
+        fps: frames per second of the simulation; frame k is centred at ``k / fps``.
+        n_bands: number of log-spaced bands between 30 Hz and 16 kHz (48–64).
+        bpm: the tempo, if known; otherwise it is estimated.
+        song_hash: identifies the song in the result; defaults to the SHA-256
+            of the samples.
+
+    Returns:
+        The song's `MusicFeatures`. Silence gives floor levels, no triggers and
+        no beats (tempo 0, or ``bpm`` when given).
+
+    Raises:
+        ValueError: ``fps`` or ``bpm`` not positive, or ``n_bands`` outside 48–64.
+    """
+    if not (math.isfinite(fps) and fps > 0):
+        raise ValueError(f"fps must be positive, got {fps}")
+    if bpm is not None and not (math.isfinite(bpm) and bpm > 0):
+        raise ValueError(f"bpm must be positive, got {bpm}")
+    edges = band_edges(n_bands)
+    sr = audio.sample_rate
+    levels_abs = _decibels(
+        band_power(audio.samples, sr, fps, edges, window_length(sr, LEVEL_WINDOW_S))
+    )
+    reference = float(np.percentile(levels_abs, REFERENCE_PERCENTILE))
+    silent = reference < SILENCE_DB
+    levels = _relative(levels_abs, reference, LEVEL_FLOOR_DB, silent)
+    onset_abs = _decibels(
+        band_power(audio.samples, sr, fps, edges, window_length(sr, ONSET_WINDOW_S))
+    )
+    onset_levels = _relative(onset_abs, reference, ONSET_FLOOR_DB, silent)
+    onset = onset_strength(onset_levels, fps)
+    triggers = adaptive_triggers(onset, onset_levels, fps, _TRIGGERS)
+    envelope = onset_envelope(onset)
+    tempo = bpm if bpm is not None else estimate_tempo(envelope, fps)
+    beats = track_beats(envelope, fps, tempo) if math.isfinite(tempo) else np.zeros(0)
+    tempo = tempo if math.isfinite(tempo) else 0.0
+    return MusicFeatures(
+        fps=float(fps),
+        duration=audio.duration,
+        band_edges_hz=edges,
+        band_centres_hz=band_centres(edges),
+        levels=levels.astype(np.float32),
+        onset=onset,
+        triggers=triggers,
+        activation=activation(triggers, fps, _TRIGGERS.decay_s),
+        tempo_bpm=float(tempo),
+        beats=beats,
+        beat_phase=beat_phase(beats, len(levels), fps, tempo),
+        song_hash=song_hash or _samples_sha256(audio),
+    )
+
+
+def _decibels(power: npt.NDArray[np.float32]) -> npt.NDArray[np.float32]:
+    return 10.0 * np.log10(power + np.float32(_POWER_FLOOR))
+
+
+def _relative(
+    levels: npt.NDArray[np.float32], reference: float, floor: float, silent: bool
+) -> npt.NDArray[np.float32]:
+    """Levels in dB relative to ``reference``, never below ``floor`` (all floor if silent)."""
+    if silent:
+        return np.full_like(levels, floor)
+    return np.maximum(levels - np.float32(reference), np.float32(floor))
+
+
+def analyse_file(
+    path: str | os.PathLike[str],
+    *,
+    cache_dir: str | os.PathLike[str] | None = None,
+    fps: float = 60.0,
+    n_bands: int = 56,
+    bpm: float | None = None,
+) -> MusicFeatures:
+    """Decode and analyse a song file, reusing a cached analysis when there is one.
+
+    The cache holds one ``.npz`` per song and setting, keyed by the SHA-256 of
+    the file's bytes, the analysis parameters and `ANALYSIS_VERSION`. A cache
+    file that cannot be read is ignored and rewritten; a cache directory that
+    cannot be written only costs the reuse (a warning is logged).
+
+    Args:
+        path: the song file (any format `load_audio` reads).
+        cache_dir: where cached analyses live; defaults to `default_cache_dir`.
+        fps: frames per second (see `analyse`).
+        n_bands: number of bands (see `analyse`).
+        bpm: known tempo, if any (see `analyse`).
+
+    Returns:
+        The song's `MusicFeatures`, with ``song_hash`` the file's SHA-256.
+
+    Raises:
+        AudioError: the file cannot be decoded (see `load_audio`).
+    """
+    path = Path(path)
+    check_readable_file(path)
+    song_hash = _file_sha256(path)
+    cache_path = Path(cache_dir or default_cache_dir()) / _cache_name(song_hash, fps, n_bands, bpm)
+    cached = _read_cache(cache_path, song_hash, fps, n_bands)
+    if cached is not None:
+        return cached
+    features = analyse(load_audio(path), fps=fps, n_bands=n_bands, bpm=bpm, song_hash=song_hash)
+    try:
+        cache_path.parent.mkdir(parents=True, exist_ok=True)
+        features.save(cache_path)
+    except OSError as exc:
+        _log.warning("could not cache the analysis of %s: %s", path, exc)
+    return features
+
+
+def default_cache_dir() -> Path:
+    """The per-user cache directory for song analyses (``<user cache>/sinews/music``)."""
+    import platformdirs
+
+    return Path(platformdirs.user_cache_dir("sinews")) / "music"
+
+
+def _cache_name(song_hash: str, fps: float, n_bands: int, bpm: float | None) -> str:
+    settings = f"v{ANALYSIS_VERSION}|fps={fps!r}|bands={n_bands}|bpm={bpm!r}|{_TRIGGERS!r}"
+    return f"{song_hash[:32]}-{hashlib.sha256(settings.encode()).hexdigest()[:16]}.npz"
+
+
+def _read_cache(path: Path, song_hash: str, fps: float, n_bands: int) -> MusicFeatures | None:
+    """The cached features at ``path`` if they are readable and match, else None."""
+    if not path.is_file():
+        return None
+    try:
+        features = MusicFeatures.load(path)
+    except AudioError as exc:
+        _log.warning("ignoring unreadable cached analysis: %s", exc)
+        return None
+    if features.song_hash != song_hash or features.fps != fps or features.n_bands != n_bands:
+        return None
+    return features
+
+
+def _file_sha256(path: Path) -> str:
+    digest = hashlib.sha256()
+    try:
+        with open(path, "rb") as fh:
+            while chunk := fh.read(1 << 20):
+                digest.update(chunk)
+    except OSError as exc:
+        raise AudioError(f"{path}: cannot read ({exc.strerror or exc})") from None
+    return digest.hexdigest()
+
+
+def _samples_sha256(audio: Audio) -> str:
+    digest = hashlib.sha256(np.int64(audio.sample_rate).tobytes())
+    digest.update(np.ascontiguousarray(audio.samples).tobytes())
+    return digest.hexdigest()
