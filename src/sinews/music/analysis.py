@@ -22,7 +22,13 @@ from sinews.music.decode import Audio, check_readable_file, load_audio
 from sinews.music.errors import AudioError
 from sinews.music.features import ANALYSIS_VERSION, MusicFeatures
 from sinews.music.onsets import TriggerParams, activation, adaptive_triggers, onset_strength
-from sinews.music.spectrum import band_centres, band_edges, band_power, window_length
+from sinews.music.spectrum import (
+    DEFAULT_BANDS,
+    band_centres,
+    band_edges,
+    band_power,
+    window_length,
+)
 
 __all__ = ["analyse", "analyse_file", "default_cache_dir"]
 
@@ -52,7 +58,7 @@ def analyse(
     audio: Audio,
     *,
     fps: float = 60.0,
-    n_bands: int = 56,
+    n_bands: int = DEFAULT_BANDS,
     bpm: float | None = None,
     song_hash: str | None = None,
 ) -> MusicFeatures:
@@ -129,7 +135,7 @@ def analyse_file(
     *,
     cache_dir: str | os.PathLike[str] | None = None,
     fps: float = 60.0,
-    n_bands: int = 56,
+    n_bands: int = DEFAULT_BANDS,
     bpm: float | None = None,
 ) -> MusicFeatures:
     """Decode and analyse a song file, reusing a cached analysis when there is one.

@@ -17,6 +17,7 @@ import numpy.typing as npt
 import scipy.fft
 
 __all__ = [
+    "DEFAULT_BANDS",
     "F_HIGH_HZ",
     "F_LOW_HZ",
     "MAX_BANDS",
@@ -34,6 +35,7 @@ F_LOW_HZ = 30.0
 F_HIGH_HZ = 16000.0
 MIN_BANDS = 48
 MAX_BANDS = 64
+DEFAULT_BANDS = 56
 DEFAULT_BANDS = 56
 _CHUNK_FRAMES = 512
 
