@@ -25,6 +25,7 @@ import numpy.typing as npt
 
 from sinews.music import synth
 from sinews.music.decode import save_wav
+from sinews.music.errors import AudioError
 
 __all__ = ["DEFAULT_DEMO", "DEMO_NAMES", "DemoSong", "demo_song", "write_demo"]
 
@@ -208,10 +209,10 @@ def demo_song(name: str = DEFAULT_DEMO) -> DemoSong:
         name: one of `DEMO_NAMES`.
 
     Raises:
-        ValueError: an unknown name.
+        AudioError: an unknown name.
     """
     if name not in _SONGS:
-        raise ValueError(f"unknown demo song {name!r}; choose one of {', '.join(DEMO_NAMES)}")
+        raise AudioError(f"no demo song called {name!r}; choose one of {', '.join(DEMO_NAMES)}")
     build, seed = _SONGS[name]
     return build(np.random.default_rng(seed))
 

@@ -1,0 +1,79 @@
+"""Song commands: ``sinews songs demo``, ``sinews songs analyse`` and ``sinews score``."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from sinews.music import (
+    DEFAULT_DEMO,
+    DEMO_NAMES,
+    analyse_file,
+    beat_align_score,
+    kinematic_beats,
+    write_demo,
+)
+from sinews.trajectory import Trajectory, TrajectoryError
+
+__all__ = ["register"]
+
+songs_app = typer.Typer(help="Demo songs and song analysis.", no_args_is_help=True)
+
+Bpm = Annotated[
+    float | None,
+    typer.Option(min=20.0, max=400.0, help="The tempo, if known (skips tempo detection)."),
+]
+
+
+@songs_app.command("demo")
+def demo(
+    output: Annotated[
+        Path, typer.Option("-o", "--output", help="File to write (.wav, .flac, .ogg, .mp3).")
+    ] = Path("demo.wav"),
+    name: Annotated[
+        str, typer.Option(help=f"Which demo song: {', '.join(DEMO_NAMES)}.")
+    ] = DEFAULT_DEMO,
+) -> None:
+    """Synthesise a demo song (deterministic, about 50 s) and write it to a file."""
+    path = write_demo(name, output)
+    typer.echo(f"wrote {path}")
+
+
+@songs_app.command("analyse")
+def analyse(
+    song: Annotated[Path, typer.Argument(help="Song file (WAV, FLAC, OGG, MP3, M4A).")],
+    bpm: Bpm = None,
+) -> None:
+    """Analyse a song (cached) and print its length, tempo and beats."""
+    features = analyse_file(song, bpm=bpm)
+    typer.echo(
+        f"{song}: {features.duration:.1f} s, {features.tempo_bpm:.1f} BPM, "
+        f"{len(features.beats)} beats, {features.n_bands} bands, "
+        f"{int(features.triggers.sum())} band triggers"
+    )
+
+
+def score(
+    trajectory: Annotated[Path, typer.Argument(help="Trajectory file (.npz).")],
+    song: Annotated[
+        Path | None,
+        typer.Option(help="Song to take the beats from (default: the beats saved in the file)."),
+    ] = None,
+    bpm: Bpm = None,
+) -> None:
+    """Print the beat-align score of a motion: how well its pauses fall on the beats (0–1)."""
+    traj = Trajectory.load(trajectory)
+    beats = traj.beats if song is None else analyse_file(song, bpm=bpm).beats
+    if beats is None:
+        raise TrajectoryError(f"{trajectory}: no beats saved in the file; pass --song SONG")
+    value = beat_align_score(traj.positions, traj.fps, beats)
+    pauses = len(kinematic_beats(traj.positions, traj.fps))
+    typer.echo(f"beat-align score {value:.3f} ({len(beats)} music beats, {pauses} kinematic beats)")
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``songs`` commands and ``score`` to ``app``."""
+    app.add_typer(songs_app, name="songs")
+    app.command("score")(score)
