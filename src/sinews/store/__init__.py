@@ -1,0 +1,32 @@
+"""The run store: evolution runs in SQLite (WAL, one transaction per generation).
+
+Tables: ``runs`` (kind, config, seed, song, code version, status),
+``individuals`` (genome blob + the run's codec, seed, fitness and terms,
+picked and failed flags), ``parents`` (lineage, up to two per child),
+``generations`` (the strategy checkpoint) and ``media`` (files, relative to
+the database's directory). Nothing here is specific to dancers: any kind of
+run stores its genomes through a codec and its own fitness terms.
+"""
+
+from __future__ import annotations
+
+from sinews.store.codec import CODECS, decode_genome, encode_genome
+from sinews.store.errors import StoreError
+from sinews.store.records import GenerationRecord, Individual, Media, RunInfo
+from sinews.store.runs import RunStore, default_db_path
+from sinews.store.schema import APPLICATION_ID, SCHEMA_VERSION
+
+__all__ = [
+    "APPLICATION_ID",
+    "CODECS",
+    "SCHEMA_VERSION",
+    "GenerationRecord",
+    "Individual",
+    "Media",
+    "RunInfo",
+    "RunStore",
+    "StoreError",
+    "decode_genome",
+    "default_db_path",
+    "encode_genome",
+]

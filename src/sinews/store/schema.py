@@ -1,0 +1,166 @@
+"""Open a sinews database safely: recognise it, refuse others, migrate it.
+
+A sinews database carries ``PRAGMA application_id = APPLICATION_ID`` and its
+schema version in ``PRAGMA user_version``. Opening a path:
+
+* missing or empty file → a new database is created;
+* not an SQLite file (garbage bytes) → `StoreError`, the file is untouched;
+* an SQLite file of another application (other application_id, or any
+  tables without ours) → `StoreError`, untouched;
+* a sinews database of an older schema → migrated in one transaction;
+  of a newer one → `StoreError`.
+
+Connections run in WAL mode with ``synchronous=NORMAL`` (a commit survives a
+crash of the program; a power cut may lose the last commits but never
+corrupts), foreign keys on, and explicit transactions (autocommit otherwise).
+"""
+
+from __future__ import annotations
+
+import sqlite3
+from pathlib import Path
+
+from sinews.store.errors import StoreError
+
+__all__ = ["APPLICATION_ID", "MIGRATIONS", "SCHEMA_VERSION", "connect"]
+
+APPLICATION_ID = 0x53494E57
+"""``PRAGMA application_id`` of sinews databases ("SINW")."""
+
+_SQLITE_MAGIC = b"SQLite format 3\x00"
+
+MIGRATIONS: tuple[str, ...] = (
+    # 1: runs, individuals, parents, generations, media.
+    """
+    CREATE TABLE runs (
+        id INTEGER PRIMARY KEY,
+        kind TEXT NOT NULL,
+        config TEXT NOT NULL,
+        seed INTEGER NOT NULL,
+        song_hash TEXT,
+        song_path TEXT,
+        code_version TEXT NOT NULL,
+        genome_codec TEXT NOT NULL,
+        status TEXT NOT NULL CHECK (status IN ('running', 'finished', 'failed')),
+        created TEXT NOT NULL,
+        updated TEXT NOT NULL
+    );
+    CREATE TABLE individuals (
+        id INTEGER PRIMARY KEY,
+        run_id INTEGER NOT NULL REFERENCES runs(id) ON DELETE CASCADE,
+        generation INTEGER NOT NULL,
+        idx INTEGER NOT NULL,
+        genome BLOB NOT NULL,
+        seed INTEGER,
+        fitness REAL,
+        terms TEXT,
+        picked INTEGER NOT NULL DEFAULT 0,
+        failed INTEGER NOT NULL DEFAULT 0,
+        UNIQUE (run_id, generation, idx)
+    );
+    CREATE TABLE parents (
+        child INTEGER NOT NULL REFERENCES individuals(id) ON DELETE CASCADE,
+        slot INTEGER NOT NULL CHECK (slot IN (0, 1)),
+        parent INTEGER NOT NULL REFERENCES individuals(id) ON DELETE CASCADE,
+        PRIMARY KEY (child, slot)
+    ) WITHOUT ROWID;
+    CREATE INDEX parents_by_parent ON parents(parent);
+    CREATE TABLE generations (
+        run_id INTEGER NOT NULL REFERENCES runs(id) ON DELETE CASCADE,
+        generation INTEGER NOT NULL,
+        checkpoint BLOB NOT NULL,
+        created TEXT NOT NULL,
+        PRIMARY KEY (run_id, generation)
+    );
+    CREATE TABLE media (
+        id INTEGER PRIMARY KEY,
+        run_id INTEGER NOT NULL REFERENCES runs(id) ON DELETE CASCADE,
+        individual_id INTEGER REFERENCES individuals(id) ON DELETE CASCADE,
+        kind TEXT NOT NULL,
+        path TEXT NOT NULL,
+        created TEXT NOT NULL
+    );
+    CREATE INDEX media_by_run ON media(run_id);
+    """,
+)
+"""Schema scripts; script k takes a database from ``user_version`` k to k + 1."""
+
+SCHEMA_VERSION = len(MIGRATIONS)
+
+
+def connect(path: Path) -> sqlite3.Connection:
+    """Open (creating if needed) the sinews database at ``path``, migrated to `SCHEMA_VERSION`.
+
+    Raises:
+        StoreError: the file is not SQLite, belongs to another application,
+            was written by a newer sinews, or cannot be opened.
+    """
+    _check_header(path)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        conn = sqlite3.connect(path, isolation_level=None, timeout=30.0)
+    except (OSError, sqlite3.Error) as exc:
+        raise StoreError(f"{path}: cannot open the database ({exc})") from None
+    try:
+        _identify_and_migrate(conn, path)
+        conn.execute("PRAGMA journal_mode = WAL")
+        conn.execute("PRAGMA synchronous = NORMAL")
+        conn.execute("PRAGMA foreign_keys = ON")
+    except sqlite3.DatabaseError as exc:
+        conn.close()
+        raise StoreError(f"{path}: not a usable sinews database ({exc})") from None
+    except StoreError:
+        conn.close()
+        raise
+    return conn
+
+
+def _check_header(path: Path) -> None:
+    """Refuse a non-empty file that does not start like an SQLite database."""
+    try:
+        with open(path, "rb") as fh:
+            head = fh.read(len(_SQLITE_MAGIC))
+    except FileNotFoundError:
+        return
+    except OSError as exc:
+        raise StoreError(f"{path}: cannot read ({exc.strerror or exc})") from None
+    if head and head != _SQLITE_MAGIC:
+        raise StoreError(
+            f"{path}: not a sinews database (not an SQLite file); refusing to touch it"
+        )
+
+
+def _identify_and_migrate(conn: sqlite3.Connection, path: Path) -> None:
+    app_id = conn.execute("PRAGMA application_id").fetchone()[0]
+    version = conn.execute("PRAGMA user_version").fetchone()[0]
+    if app_id != APPLICATION_ID:
+        tables = conn.execute("SELECT count(*) FROM sqlite_schema").fetchone()[0]
+        if app_id != 0 or tables or version:
+            raise StoreError(
+                f"{path}: an SQLite database of another application, not sinews; "
+                "refusing to touch it"
+            )
+    if version > SCHEMA_VERSION:
+        raise StoreError(
+            f"{path}: made by a newer sinews (schema {version}, this one knows {SCHEMA_VERSION})"
+        )
+    if version == SCHEMA_VERSION:
+        return
+    conn.execute("BEGIN IMMEDIATE")
+    try:
+        # Re-read inside the write lock: another process may have migrated meanwhile.
+        version = conn.execute("PRAGMA user_version").fetchone()[0]
+        for step in range(version, SCHEMA_VERSION):
+            for statement in _statements(MIGRATIONS[step]):
+                conn.execute(statement)
+        conn.execute(f"PRAGMA application_id = {APPLICATION_ID}")
+        conn.execute(f"PRAGMA user_version = {SCHEMA_VERSION}")
+        conn.execute("COMMIT")
+    except BaseException:
+        conn.execute("ROLLBACK")
+        raise
+
+
+def _statements(script: str) -> list[str]:
+    """Split a migration script into statements (ours contain no ';' inside strings)."""
+    return [s.strip() for s in script.split(";") if s.strip()]
