@@ -146,12 +146,16 @@ class Figure:
         model = _compile(xml)
         joints, kp, kv = _servos(model, name)
         qpos0 = np.array([model.qpos0[model.joint(j).qposadr[0]] for j in joints])
-        rest = qpos0 if neutral is None else np.asarray(neutral, dtype=np.float64)
+        rest = qpos0 if neutral is None else np.array(neutral, dtype=np.float64)
         if rest.shape != (len(joints),) or not np.isfinite(rest).all():
             raise FigureError(f"{name}: neutral must be {len(joints)} finite angles")
         bodies = tuple(model.body(i).name or f"body{i}" for i in range(1, model.nbody))
         parents = model.body_parentid[2:]
         links = [(p - 1, i + 1) for i, p in enumerate(parents) if p > 0]
+        edges = np.array(links, dtype=np.int32).reshape(-1, 2)
+        ranges = _ranges(model, joints)
+        for array in (rest, kp, kv, ranges, edges):
+            array.flags.writeable = False  # a figure is a value
         return cls(
             name=name,
             xml=xml,
@@ -159,11 +163,11 @@ class Figure:
             neutral=rest,
             kp=kp,
             kv=kv,
-            joint_range=_ranges(model, joints),
+            joint_range=ranges,
             base_bodies=tuple(base_bodies),
             head_bodies=tuple(head_bodies),
             body_names=bodies,
-            edges=np.array(links, dtype=np.int32).reshape(-1, 2),
+            edges=edges,
             sensor_names=sensor_columns(joints, contact),
         )
 
