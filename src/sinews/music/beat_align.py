@@ -41,7 +41,9 @@ def mean_speed(positions: npt.NDArray[np.floating], fps: float) -> npt.NDArray[n
 
 
 def kinematic_beats(positions: npt.NDArray[np.floating], fps: float) -> npt.NDArray[np.int64]:
-    """Frames where the smoothed mean node speed has a strict local minimum.
+    """Frames where the smoothed mean node speed has a local minimum.
+
+    A flat minimum (equal speeds in neighbouring frames) counts once, at its middle.
 
     Args:
         positions: (T, N, D) node positions.
@@ -53,7 +55,8 @@ def kinematic_beats(positions: npt.NDArray[np.floating], fps: float) -> npt.NDAr
     if len(positions) < 3:
         return np.zeros(0, dtype=np.int64)
     speed = scipy.ndimage.gaussian_filter1d(mean_speed(positions, fps), SMOOTH_S * fps)
-    return scipy.signal.argrelextrema(speed, np.less)[0].astype(np.int64)
+    pauses, _ = scipy.signal.find_peaks(-speed)
+    return pauses.astype(np.int64)
 
 
 def beat_align_score(

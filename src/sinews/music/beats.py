@@ -183,4 +183,6 @@ def beat_phase(
     phase[inside] = (times[inside] - beats[i]) / (beats[i + 1] - beats[i])
     anchor = np.where(index < 0, beats[0], beats[-1])
     phase[~inside] = (times[~inside] - anchor[~inside]) / period
-    return np.mod(phase, 1.0).astype(np.float32)
+    wrapped = np.mod(phase, 1.0).astype(np.float32)
+    wrapped[wrapped >= 1.0] = 0.0  # just under 1 in float64 can round up to 1 in float32
+    return wrapped
