@@ -13,7 +13,7 @@ reach full weight — "teach it how to get to the X first", then add style.
 from __future__ import annotations
 
 import math
-from collections.abc import Collection, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -112,14 +112,6 @@ class FitnessSpec:
             total = terms @ weights
         bad = failed | np.isnan(terms).any(axis=1) | ~np.isfinite(total)
         return np.where(bad, WORST_FITNESS, total)
-
-    def check_known(self, available: Collection[str]) -> None:
-        """Raise `FitnessError` if a term is not one of ``available``."""
-        for name in self.names:
-            if name not in available:
-                raise FitnessError(
-                    f"no fitness term called {name!r}; choose from {', '.join(available)}"
-                )
 
     def to_dict(self) -> dict[str, Any]:
         """A JSON/TOML-safe description (see `from_dict`)."""

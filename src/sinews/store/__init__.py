@@ -12,21 +12,27 @@ from __future__ import annotations
 
 from sinews.store.codec import CODECS, decode_genome, encode_genome
 from sinews.store.errors import StoreError
-from sinews.store.records import GenerationRecord, Individual, Media, RunInfo
+from sinews.store.export import export_run
+from sinews.store.records import GenerationRecord, Individual, Media, RunInfo, ScoreTable
 from sinews.store.runs import RunStore, default_db_path
 from sinews.store.schema import APPLICATION_ID, SCHEMA_VERSION
+from sinews.store.stats import GenerationStats, generation_stats
 
 __all__ = [
     "APPLICATION_ID",
     "CODECS",
     "SCHEMA_VERSION",
     "GenerationRecord",
+    "GenerationStats",
     "Individual",
     "Media",
     "RunInfo",
     "RunStore",
+    "ScoreTable",
     "StoreError",
     "decode_genome",
     "default_db_path",
     "encode_genome",
+    "export_run",
+    "generation_stats",
 ]

@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["RUN_STATUSES", "GenerationRecord", "Individual", "Media", "RunInfo"]
+__all__ = ["RUN_STATUSES", "GenerationRecord", "Individual", "Media", "RunInfo", "ScoreTable"]
 
 RUN_STATUSES = ("running", "finished", "failed")
 
@@ -140,3 +140,22 @@ class Media:
     kind: str
     path: str
     created: str
+
+
+@dataclass(frozen=True, eq=False)
+class ScoreTable:
+    """The scores of a run's scored individuals, by generation then index (n rows).
+
+    Attributes:
+        generation: (n,) int64.
+        index: (n,) int64 place in the generation.
+        fitness: (n,) float64 totals (-inf for failed).
+        failed: (n,) bool.
+        terms: n dicts of term values (None for NaN).
+    """
+
+    generation: npt.NDArray[np.int64]
+    index: npt.NDArray[np.int64]
+    fitness: npt.NDArray[np.float64]
+    failed: npt.NDArray[np.bool_]
+    terms: list[dict[str, float | None]]

@@ -24,7 +24,14 @@ import numpy.typing as npt
 import sinews
 from sinews.store.codec import CODECS, decode_genome, encode_genome
 from sinews.store.errors import StoreError
-from sinews.store.records import RUN_STATUSES, GenerationRecord, Individual, Media, RunInfo
+from sinews.store.records import (
+    RUN_STATUSES,
+    GenerationRecord,
+    Individual,
+    Media,
+    RunInfo,
+    ScoreTable,
+)
 from sinews.store.schema import connect
 
 __all__ = ["RunStore", "default_db_path"]
@@ -297,18 +304,20 @@ class RunStore:
             order="i.generation DESC, i.idx",
         )
 
-    def fitness_table(
-        self, run_id: int
-    ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.float64], list[dict[str, float | None]]]:
-        """Every scored individual's generation, fitness and terms (for plots and stats)."""
+    def scores(self, run_id: int) -> ScoreTable:
+        """Every scored individual's fitness, terms and failed flag (for stats and plots)."""
         rows = self._query(
-            "SELECT generation, fitness, terms FROM individuals "
+            "SELECT generation, idx, fitness, failed, terms FROM individuals "
             "WHERE run_id = ? AND fitness IS NOT NULL ORDER BY generation, idx",
             (run_id,),
         )
-        generations = np.array([r[0] for r in rows], dtype=np.int64)
-        fitness = np.array([r[1] for r in rows], dtype=np.float64)
-        return generations, fitness, [json.loads(r[2]) if r[2] else {} for r in rows]
+        return ScoreTable(
+            generation=np.array([r[0] for r in rows], dtype=np.int64),
+            index=np.array([r[1] for r in rows], dtype=np.int64),
+            fitness=np.array([r[2] for r in rows], dtype=np.float64),
+            failed=np.array([bool(r[3]) for r in rows], dtype=bool),
+            terms=[json.loads(r[4]) if r[4] else {} for r in rows],
+        )
 
     def _individuals(self, where: str, args: Sequence[Any], order: str = "") -> list[Individual]:
         rows = self._query(

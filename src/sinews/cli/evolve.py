@@ -1,0 +1,178 @@
+"""``sinews evolve dancers``: an automatic evolution run with a progress bar and a summary."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+from typing import Annotated
+
+import typer
+from rich.console import Console
+from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn, TimeRemainingColumn
+from rich.table import Table
+
+from sinews.evolve import EVALUATORS, make_evaluator
+from sinews.experiments import dancer_evolution
+from sinews.experiments.evolution import GenerationSummary
+from sinews.experiments.run_config import load_toml
+from sinews.store import RunStore, generation_stats
+
+__all__ = ["Db", "Executor", "Scheduler", "Workers", "open_store", "register", "run_with_progress"]
+
+evolve_app = typer.Typer(help="Evolve a population automatically.", no_args_is_help=True)
+
+Db = Annotated[
+    Path | None, typer.Option("--db", help="Run database (default: the app's data dir).")
+]
+Executor = Annotated[
+    str, typer.Option(help=f"Where dancers are simulated: {', '.join(EVALUATORS)}.")
+]
+Scheduler = Annotated[
+    str | None, typer.Option(help="Dask scheduler address, e.g. tcp://head:8786.")
+]
+Workers = Annotated[
+    int | None, typer.Option(help="Worker processes (default: CPUs; Dask local cluster: 2).")
+]
+
+
+def open_store(db: Path | None) -> RunStore:
+    """The run store at ``db`` or the default location."""
+    return RunStore(db)
+
+
+def run_with_progress(
+    store: RunStore,
+    run_id: int,
+    *,
+    executor: str,
+    scheduler: str | None,
+    workers: int | None,
+    generations: int | None = None,
+) -> None:
+    """Run or resume a dancer run with a progress bar, then print its summary table."""
+    console = Console(stderr=True)
+    info = store.run(run_id)
+    total = generations or int(info.config["generations"])
+    done = store.last_generation(run_id) + 1
+    columns = (
+        TextColumn("[bold]run {task.fields[run]}[/] generation {task.completed}/{task.total}"),
+        BarColumn(),
+        TaskProgressColumn(),
+        TextColumn("best {task.fields[best]} mean {task.fields[mean]}"),
+        TimeRemainingColumn(),
+    )
+    with Progress(*columns, console=console, transient=False) as progress:
+        task = progress.add_task(
+            "evolve", total=total, completed=done, run=run_id, best="-", mean="-"
+        )
+
+        def show(summary: GenerationSummary) -> None:
+            progress.update(
+                task,
+                completed=summary.generation + 1,
+                best=_number(summary.best),
+                mean=_number(summary.mean),
+            )
+
+        try:
+            with make_evaluator(executor, workers=workers, scheduler=scheduler) as evaluator:
+                dancer_evolution.run_dancers(
+                    store, run_id, evaluator=evaluator, generations=generations, on_generation=show
+                )
+        except KeyboardInterrupt:
+            console.print(f"interrupted; continue with: sinews runs resume {run_id}")
+            raise
+    print_summary(store, run_id)
+
+
+def print_summary(store: RunStore, run_id: int) -> None:
+    """A table of best and mean fitness and the best's terms per generation, then the winner."""
+    stats = generation_stats(store.scores(run_id))
+    table = Table(title=f"run {run_id}")
+    for column in ("gen", "best", "mean", "failed", *stats.best_terms):
+        table.add_column(column, justify="right", overflow="fold")
+    for k, generation in enumerate(stats.generations):
+        terms = [_number(values[k]) for values in stats.best_terms.values()]
+        table.add_row(
+            str(generation),
+            _number(stats.best[k]),
+            _number(stats.mean[k]),
+            str(stats.failed[k]),
+            *terms,
+        )
+    console = Console()
+    console.print(table)
+    if len(stats.generations):
+        best = store.best(run_id)
+        console.print(
+            f"best: individual {best.id} (generation {best.generation}, #{best.index}), "
+            f"fitness {_number(best.fitness)}\n"
+            f"  sinews runs best {run_id} -o dancer.json · "
+            f"sinews render {run_id} --best -o best.mp4 · sinews plot {run_id} -o fitness.png"
+        )
+
+
+def _number(value: float | None) -> str:
+    return "-" if value is None or value != value else f"{value:.3f}"
+
+
+@evolve_app.command("dancers")
+def dancers(
+    song: Annotated[
+        str | None,
+        typer.Option(help="Song file, or demo:groove / demo:sway (bundled demo songs)."),
+    ] = None,
+    population: Annotated[int | None, typer.Option(help="Dancers per generation [16].")] = None,
+    generations: Annotated[int | None, typer.Option(help="Generations to run [20].")] = None,
+    seed: Annotated[int | None, typer.Option(help="Run seed [0].")] = None,
+    seconds: Annotated[
+        float | None, typer.Option(help="Dance length [30 s, or the song if shorter].")
+    ] = None,
+    fitness: Annotated[
+        str | None,
+        typer.Option(help="Fitness terms, main goal first, e.g. beat-align,liveliness."),
+    ] = None,
+    weights: Annotated[
+        str | None, typer.Option(help="Term weights, e.g. liveliness=0.2,humanoid=1.")
+    ] = None,
+    phase_in: Annotated[
+        str | None,
+        typer.Option(help="Style weights 0 before START, full from FULL, e.g. 5:15 [5:15]."),
+    ] = None,
+    strategy: Annotated[str | None, typer.Option(help="ga or hybrid [ga].")] = None,
+    config: Annotated[
+        Path | None, typer.Option("--config", help="Run file (TOML); options override it.")
+    ] = None,
+    executor: Executor = "processes",
+    scheduler: Scheduler = None,
+    workers: Workers = None,
+    db: Db = None,
+) -> None:
+    """Evolve dancers to a song, storing every generation (resume with ``sinews runs resume``)."""
+    run_config, song_name, length = dancer_evolution.dancer_config(
+        file_values=load_toml(config) if config is not None else {},
+        options={
+            "song": song,
+            "population": population,
+            "generations": generations,
+            "seed": seed,
+            "seconds": seconds,
+            "fitness": fitness,
+            "weights": weights,
+            "phase_in": phase_in,
+            "strategy": strategy,
+        },
+    )
+    with open_store(db) as store:
+        started = time.perf_counter()
+        run_id = dancer_evolution.create_dancer_run(
+            store, run_config, song=song_name, seconds=length
+        )
+        typer.echo(f"run {run_id} in {store.path}", err=True)
+        run_with_progress(store, run_id, executor=executor, scheduler=scheduler, workers=workers)
+        typer.echo(f"{time.perf_counter() - started:.1f} s", err=True)
+
+
+def register(app: typer.Typer) -> None:
+    """Add ``sinews evolve`` to ``app``."""
+    app.add_typer(evolve_app, name="evolve")

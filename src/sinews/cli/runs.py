@@ -1,0 +1,206 @@
+"""``sinews runs`` (list, show, best, lineage, resume, export), ``render`` and ``plot``."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+from rich.console import Console
+from rich.table import Table
+
+from sinews.cli.evolve import Db, Executor, Scheduler, Workers, open_store, print_summary
+from sinews.cli.evolve import run_with_progress as _run_with_progress
+from sinews.dancers import DancerGenome
+from sinews.errors import SinewsError
+from sinews.experiments import dancer_evolution
+from sinews.store import Individual, RunStore, export_run, generation_stats
+
+__all__ = ["register"]
+
+runs_app = typer.Typer(help="Inspect, continue and export stored runs.", no_args_is_help=True)
+
+Run = Annotated[int, typer.Argument(help="Run number (see sinews runs list).")]
+Output = Annotated[Path, typer.Option("-o", "--output", help="File to write.")]
+
+
+def _number(value: float | None) -> str:
+    return "-" if value is None or value != value else f"{value:.4g}"
+
+
+@runs_app.command("list")
+def list_runs(db: Db = None) -> None:
+    """List the stored runs."""
+    with open_store(db) as store:
+        table = Table(title=str(store.path))
+        for column in (
+            "run",
+            "kind",
+            "status",
+            "generations",
+            "population",
+            "best",
+            "song",
+            "created",
+        ):
+            table.add_column(column)
+        for info in store.runs():
+            table.add_row(
+                str(info.id),
+                info.kind,
+                info.status,
+                f"{info.generations}/{info.config.get('generations', '?')}",
+                str(info.config.get("population", "?")),
+                _number(info.best_fitness),
+                str(info.config.get("song", "")),
+                info.created,
+            )
+        Console().print(table)
+
+
+@runs_app.command("show")
+def show(run: Run, db: Db = None) -> None:
+    """Show a run's settings and its fitness per generation."""
+    with open_store(db) as store:
+        info = store.run(run)
+        console = Console()
+        console.print(
+            f"run {info.id}: {info.kind}, {info.status}, seed {info.seed}, "
+            f"sinews {info.code_version}, created {info.created}, updated {info.updated}"
+        )
+        if info.song_path:
+            console.print(f"song: {info.song_path} (sha256 {str(info.song_hash)[:12]}…)")
+        console.print_json(data=info.config)
+        print_summary(store, run)
+
+
+@runs_app.command("best")
+def best(run: Run, output: Output, db: Db = None) -> None:
+    """Save the run's best dancer as a genome JSON file."""
+    with open_store(db) as store:
+        individual = store.best(run)
+        _dancer_genome(store, individual).save(output)
+        typer.echo(
+            f"wrote {output} (individual {individual.id}, generation {individual.generation}, "
+            f"fitness {_number(individual.fitness)})"
+        )
+
+
+@runs_app.command("lineage")
+def lineage(
+    individual: Annotated[int, typer.Argument(help="Individual id (see runs show/best).")],
+    db: Db = None,
+) -> None:
+    """Show an individual's ancestors back to generation 0."""
+    with open_store(db) as store:
+        table = Table(title=f"lineage of individual {individual}")
+        for column in ("id", "generation", "index", "fitness", "parents", "picked"):
+            table.add_column(column, justify="right")
+        for ancestor in store.lineage(individual):
+            table.add_row(
+                str(ancestor.id),
+                str(ancestor.generation),
+                str(ancestor.index),
+                _number(ancestor.fitness),
+                " ".join(map(str, ancestor.parents)) or "-",
+                "yes" if ancestor.picked else "",
+            )
+        Console().print(table)
+
+
+@runs_app.command("resume")
+def resume(
+    run: Run,
+    generations: Annotated[
+        int | None, typer.Option(help="New total of generations (to extend a run).")
+    ] = None,
+    executor: Executor = "processes",
+    scheduler: Scheduler = None,
+    workers: Workers = None,
+    db: Db = None,
+) -> None:
+    """Continue an interrupted (or extend a finished) run exactly where it stopped."""
+    with open_store(db) as store:
+        info = store.run(run)
+        target = generations or int(info.config["generations"])
+        if info.status == "finished" and info.generations >= target:
+            typer.echo(f"run {run} is finished ({info.generations} generations)", err=True)
+            return
+        _run_with_progress(
+            store,
+            run,
+            executor=executor,
+            scheduler=scheduler,
+            workers=workers,
+            generations=generations,
+        )
+
+
+@runs_app.command("export")
+def export(
+    run: Run,
+    output: Annotated[Path, typer.Option("-o", "--output", help="Directory to write.")],
+    db: Db = None,
+) -> None:
+    """Export a run to JSON/CSV files (and copy its media)."""
+    with open_store(db) as store:
+        files = export_run(store, run, output)
+    typer.echo(f"wrote {len(files)} files to {output}")
+
+
+def render(
+    run: Run,
+    output: Output,
+    individual: Annotated[int | None, typer.Option(help="Individual id to render.")] = None,
+    best_: Annotated[bool, typer.Option("--best", help="Render the run's best dancer.")] = False,
+    debug_overlay: Annotated[bool, typer.Option(help="Draw node labels and force arrows.")] = False,
+    size: Annotated[int, typer.Option(help="Picture size in pixels.")] = 480,
+    db: Db = None,
+) -> None:
+    """Re-simulate a stored dancer and draw it (.mp4 with the song, .gif, .png, .svg)."""
+    from sinews.render import render as draw
+
+    if (individual is None) == (not best_):
+        raise SinewsError("give either --individual ID or --best")
+    with open_store(db) as store:
+        chosen = store.best(run) if individual is None else store.individual(individual)
+        if chosen.run_id != run:
+            raise SinewsError(f"individual {chosen.id} belongs to run {chosen.run_id}, not {run}")
+        _dancer_genome(store, chosen)
+        traj, song = dancer_evolution.simulate_individual(
+            store, chosen, record_forces=debug_overlay
+        )
+        sound = {"audio": song} if output.suffix.lower() == ".mp4" else {}
+        path = draw(traj, output, overlay=debug_overlay, size=size, **sound)
+        store.add_media(run, path, kind=path.suffix.lstrip(".").lower(), individual_id=chosen.id)
+    typer.echo(f"wrote {path} (individual {chosen.id}, fitness {_number(chosen.fitness)})")
+
+
+def plot(run: Run, output: Output, db: Db = None) -> None:
+    """Plot best and mean fitness per generation and the best dancer's terms."""
+    from sinews.render import plot_fitness
+
+    with open_store(db) as store:
+        stats = generation_stats(store.scores(run))
+        if not len(stats.generations):
+            raise SinewsError(f"run {run} has no scored generations yet")
+        series = {"best": stats.best, "mean": stats.mean, **stats.best_terms}
+        info = store.run(run)
+        title = f"run {run}: {info.kind}, {info.config.get('song', '')}"
+        path = plot_fitness(stats.generations, series, output, title)
+        store.add_media(run, path, kind=path.suffix.lstrip(".").lower())
+    typer.echo(f"wrote {path}")
+
+
+def _dancer_genome(store: RunStore, individual: Individual) -> DancerGenome:
+    kind = store.run(individual.run_id).kind
+    if kind != dancer_evolution.KIND:
+        raise SinewsError(f"run {individual.run_id} evolves {kind}; this command needs dancers")
+    return DancerGenome(individual.genome)
+
+
+def register(app: typer.Typer) -> None:
+    """Add ``sinews runs``, ``sinews render`` and ``sinews plot`` to ``app``."""
+    app.add_typer(runs_app, name="runs")
+    app.command("render")(render)
+    app.command("plot")(plot)
