@@ -26,9 +26,13 @@ app = typer.Typer(
 def _register() -> None:
     from sinews.cli.bench import register as register_bench
     from sinews.cli.dancers import register as register_dancers
+    from sinews.cli.evolve import register as register_evolve
+    from sinews.cli.runs import register as register_runs
 
     register_dancers(app)
     register_bench(app)
+    register_evolve(app)
+    register_runs(app)
 
 
 def main(argv: list[str] | None = None) -> int:
