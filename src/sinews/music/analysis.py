@@ -1,9 +1,14 @@
 """Analyse a song once, at the simulation frame rate, into `MusicFeatures` (cached on disk).
 
-The steps: log-spaced band powers from a windowed STFT (`spectrum`), levels in
-dB relative to the song's loudness reference (the 99th percentile of all band
-levels, so mastering loudness cancels out), per-band onsets and adaptive
-triggers (`onsets`), tempo and beats (`beats`).
+1. Band powers from two Hann-windowed STFTs at the frame rate (`spectrum`):
+   ~75 ms windows for the levels, fine enough to tell bands a whole tone apart
+   at 30 Hz, and ~23 ms windows for the onsets, because a long window's log
+   level starts rising as soon as its edge touches a loud sound, up to half a
+   window early.
+2. Levels in dB relative to the song's loudness reference, the 99th
+   percentile of all its band levels, so that mastering loudness cancels out.
+3. Per-band onsets and adaptive triggers (`onsets`); the mean onset is the
+   envelope that tempo and beats are tracked on (`beats`).
 """
 
 from __future__ import annotations
@@ -39,16 +44,18 @@ SILENCE_DB = -80.0
 """A song whose loudness reference is below this (dB re a full-scale sine) counts as silent."""
 
 REFERENCE_PERCENTILE = 99.0
+"""The song's loudness reference is this percentile of all its (T, B) band levels."""
+
 LEVEL_WINDOW_S = 0.075
-"""Levels use ~75 ms windows (4096 samples at 44.1/48 kHz): whole tones apart at 30 Hz."""
+"""Window of the levels: 4096 samples at 44.1 and 48 kHz."""
 
 ONSET_WINDOW_S = 0.023
-"""Onsets use ~23 ms windows (1024 samples at 44.1 kHz): a long window's log level
-starts rising as soon as its edge touches a loud sound, half a window early."""
+"""Window of the onsets: 1024 samples at 44.1 and 48 kHz."""
 
 ONSET_FLOOR_DB = -60.0
 """Onsets are measured on levels floored here, so faint sounds rising out of
 silence do not outweigh loud ones."""
+
 _TRIGGERS = TriggerParams()
 _POWER_FLOOR = 1e-12
 _log = logging.getLogger(__name__)
@@ -106,7 +113,7 @@ def analyse(
         duration=audio.duration,
         band_edges_hz=edges,
         band_centres_hz=band_centres(edges),
-        levels=levels.astype(np.float32),
+        levels=levels,
         onset=onset,
         triggers=triggers,
         activation=activation(triggers, fps, _TRIGGERS.decay_s),

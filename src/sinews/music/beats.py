@@ -2,12 +2,14 @@
 Dynamic Programming", J. New Music Research 36(1)).
 
 1. The onset envelope is the mean per-band onset strength.
-2. Tempo: the envelope's autocorrelation at a beat period plus, with less
-   weight, at two and four periods (Ellis's duple-metre refinement), weighted
-   by a log-Gaussian prior around 120 BPM (one octave wide).
-3. Beats: the beat sequence maximising the envelope at the beats plus a
-   penalty ``-tightness * log(interval / period)**2`` for each interval,
-   found by dynamic programming, then stripped of weak beats at the ends.
+2. Tempo: the (slightly blurred) envelope's autocorrelation at a beat period
+   plus, with weights 1/2 and 1/4, at two and four periods (half a bar and a
+   bar in 4/4; Ellis's "TPS2" idea taken one step further), weighted by a
+   log-Gaussian prior around 120 BPM, one octave wide.
+3. Beats: the beat sequence maximising the (Gaussian-smoothed) envelope at the
+   beats plus a penalty ``-tightness * log(interval / period)**2`` for each
+   interval, found by dynamic programming, then stripped of weak beats at
+   the ends (as in librosa's implementation of the same method).
 """
 
 from __future__ import annotations

@@ -59,6 +59,15 @@ class Audio:
     samples: npt.NDArray[np.float32]
     sample_rate: int
 
+    def __post_init__(self) -> None:
+        samples = np.asarray(self.samples, dtype=np.float32)
+        if samples.ndim != 1:
+            raise ValueError(f"samples must be one mono channel (S,), got {samples.shape}")
+        if self.sample_rate <= 0:
+            raise ValueError(f"sample_rate must be positive, got {self.sample_rate}")
+        object.__setattr__(self, "samples", samples)
+        object.__setattr__(self, "sample_rate", int(self.sample_rate))
+
     @property
     def duration(self) -> float:
         """Length in seconds."""

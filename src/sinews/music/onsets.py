@@ -1,7 +1,8 @@
 """Per-band onset strength, adaptive triggers and trigger activation.
 
-Everything here is causal (a frame only looks at earlier frames), so a
-responder reacting to a trigger never reacts to the future.
+A trigger fires on what a listener has heard so far: onsets and thresholds
+only look at earlier frames. The one whole-song statistic is the loudness
+gate (each band's loud level), like the song-wide loudness reference itself.
 """
 
 from __future__ import annotations
@@ -32,7 +33,6 @@ class TriggerParams:
         band_gate_db: ...and at most this far below its own loud level (the
             band's 99th-percentile level over the song), so that sound leaking
             into a band from a neighbour's hit does not fire it.
-
         refractory_s: after firing, a band stays quiet this long.
         decay_s: time constant of the activation's exponential decay.
     """

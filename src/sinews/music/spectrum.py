@@ -1,11 +1,10 @@
-"""Log-spaced band levels at the simulation frame rate.
+"""Log-spaced band powers at the simulation frame rate, and which bands a gene hears.
 
-Frame ``k`` is centred at ``k / fps`` seconds (sample ``round(k * sr / fps)``);
-its Hann window is about 75 ms long (4096 samples at 44.1 or 48 kHz), long
-enough to separate bands a whole tone apart down at 30 Hz while the 60 fps
-hop keeps onsets within a frame. Each band is a triangle in log frequency
-reaching to its neighbours' centres, never narrower than one FFT bin, so every
-band below Nyquist sees at least one bin; bands above Nyquist stay silent.
+Frame ``k`` is centred at ``k / fps`` seconds (sample ``round(k * sr / fps)``)
+under a Hann window of any power-of-two length (`window_length`). Each band is
+a triangle in log frequency reaching to its neighbours' centres, never
+narrower than one FFT bin, so every band below Nyquist sees at least one bin;
+bands above Nyquist stay silent (16 kHz needs a 32 kHz sample rate).
 """
 
 from __future__ import annotations
