@@ -189,7 +189,8 @@ def default_cache_dir() -> Path:
 
 
 def _cache_name(song_hash: str, fps: float, n_bands: int, bpm: float | None) -> str:
-    settings = f"v{ANALYSIS_VERSION}|fps={fps!r}|bands={n_bands}|bpm={bpm!r}|{_TRIGGERS!r}"
+    tempo = None if bpm is None else float(bpm)
+    settings = f"v{ANALYSIS_VERSION}|fps={float(fps)!r}|bands={n_bands}|bpm={tempo!r}|{_TRIGGERS!r}"
     return f"{song_hash[:32]}-{hashlib.sha256(settings.encode()).hexdigest()[:16]}.npz"
 
 

@@ -2,14 +2,14 @@
 
 * ``groove`` — 120 BPM house in A minor: four-on-the-floor kick, claps on 2
   and 4, sixteenth hats with open hats on the off-beats, an off-beat bass
-  line and a pad pumping against the kick, a bell arpeggio in the second
-  half. The default: the studio loads it.
+  line and a pad pumping against the kick, a bell arpeggio from the ninth
+  bar. The default: the studio loads it.
 * ``sway`` — 96 BPM laid-back neo-soul in C: a syncopated kick, snare on 2
   and 4, swung hats, electric-piano comping over ii–V–I–vi with a round bass.
 
-Songs are built from sixteenth-note step patterns (`Part`); the noise of
-the drums comes from a generator seeded per song, so every render is
-bit-identical.
+Songs are written as sixteenth-note step patterns on a (possibly swung)
+grid; the noise of the drums comes from a generator seeded per song, so
+every render is bit-identical.
 """
 
 from __future__ import annotations
@@ -77,6 +77,11 @@ class _Grid:
         whole, odd = divmod(step, 2)
         return LEAD_IN_S + bar * self.bar_s + whole * eighth + odd * self.swing * eighth
 
+    def beats(self, bars: int) -> npt.NDArray[np.float64]:
+        """Every quarter note of ``bars`` bars, and the downbeat the song ends on."""
+        quarters = [self.time(bar, step) for bar in range(bars) for step in (0, 4, 8, 12)]
+        return np.array([*quarters, self.time(bars, 0)])
+
 
 def _steps(pattern: str) -> list[int]:
     """Indices of the hits in a step pattern like ``"x...x..."``."""
@@ -143,9 +148,7 @@ def _groove(rng: np.random.Generator) -> DemoSong:
     kick_times = np.array(kicks)
     pump = _duck(len(pad.left), sr, kick_times, 0.8)[:, None]
     stems = [drums.stereo(), bass.stereo() * pump, pad.stereo() * pump, keys.stereo()]
-    beats = np.array([grid.time(bar, step) for bar in range(bars) for step in (0, 4, 8, 12)])
-    beats = np.append(beats, grid.time(bars, 0))
-    return DemoSong("groove", _master(stems), sr, grid.bpm, beats, kick_times)
+    return DemoSong("groove", _master(stems), sr, grid.bpm, grid.beats(bars), kick_times)
 
 
 def _sway(rng: np.random.Generator) -> DemoSong:
@@ -192,9 +195,7 @@ def _sway(rng: np.random.Generator) -> DemoSong:
     kick_times = np.array(kicks)
     duck = _duck(len(bass.left), sr, kick_times, 0.7)[:, None]
     stems = [drums.stereo(), bass.stereo() * duck, keys.stereo(), 0.3 * pad.stereo()]
-    beats = np.array([grid.time(bar, step) for bar in range(bars) for step in (0, 4, 8, 12)])
-    beats = np.append(beats, grid.time(bars, 0))
-    return DemoSong("sway", _master(stems), sr, grid.bpm, beats, kick_times)
+    return DemoSong("sway", _master(stems), sr, grid.bpm, grid.beats(bars), kick_times)
 
 
 _SONGS = {"groove": (_groove, 1207), "sway": (_sway, 96)}
