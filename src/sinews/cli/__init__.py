@@ -28,8 +28,10 @@ def _register() -> None:
     from sinews.cli.dancers import register as register_dancers
     from sinews.cli.evolve import register as register_evolve
     from sinews.cli.runs import register as register_runs
+    from sinews.cli.songs import register as register_songs
 
     register_dancers(app)
+    register_songs(app)
     register_bench(app)
     register_evolve(app)
     register_runs(app)

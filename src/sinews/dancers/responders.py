@@ -15,13 +15,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
 from sinews.dancers.genome import DancerGenome
 from sinews.dancers.skeleton import NODES
 from sinews.music.spectrum import band_for_pitch
 from sinews.springmass.actuators import ActuatorKind
 
-__all__ = ["NONE_BELOW", "SPECIES", "Responder", "responders"]
+__all__ = ["NONE_BELOW", "REACTION_FRAMES", "SPECIES", "Responder", "delayed", "responders"]
 
 SPECIES: dict[str, ActuatorKind] = {
     "kick": ActuatorKind.PUSH,
@@ -36,6 +37,16 @@ SPECIES: dict[str, ActuatorKind] = {
 
 NONE_BELOW = 0.55
 """Species genes below this mean the slot is empty (about 15 of 34 slots are filled)."""
+
+REACTION_FRAMES = 4
+"""Frames (at 60 fps: 67 ms) between a band's trigger and its responders' move.
+
+Like a dancer's reaction to a sound it hears (dancer.js itself answered one
+1024-sample block, 23 ms, late). Measured: with no delay the body's pauses come
+before the beats (each move starts on its trigger), and the beat-align score
+of random dancers barely beat motion without music; 3–6 frames of reaction put
+the pause on the beat and roughly double the score (docs/architecture.md).
+"""
 
 _STRENGTH = (20.0, 140.0)
 """Newtons at full activation for strength genes 0 and 1."""
@@ -87,3 +98,11 @@ def responders(genome: DancerGenome, n_bands: int) -> list[Responder]:
             newtons = float(np.interp(strength, (0.0, 1.0), _STRENGTH))
             found.append(Responder(node, slot, species, newtons, (lo, hi - 1), float(custom)))
     return found
+
+
+def delayed(
+    table: npt.NDArray[np.float32], frames: int = REACTION_FRAMES
+) -> npt.NDArray[np.float32]:
+    """``table`` (T, ...) shifted ``frames`` rows later, zeros first (what responders feel)."""
+    pad = np.zeros((frames, *table.shape[1:]), dtype=table.dtype)
+    return np.concatenate([pad, table])

@@ -8,8 +8,9 @@ from collections.abc import Sequence
 import numpy as np
 
 from sinews.dancers import DANCER_ENGINE, DancerGenome, develop
+from sinews.dancers.responders import delayed
 from sinews.errors import SinewsError
-from sinews.music.features import MusicFeatures
+from sinews.music import MusicFeatures
 from sinews.music.spectrum import DEFAULT_BANDS
 from sinews.springmass import BodyBatch, Recording, SimState, simulate
 from sinews.trajectory import Trajectory
@@ -77,8 +78,8 @@ def dance(
         batch.initial_state(),
         n_steps,
         DANCER_ENGINE,
-        drive=None if music is None else music.activation,
-        phase=None if music is None else music.beat_phase,
+        drive=None if music is None else delayed(music.activation),
+        phase=None if music is None else delayed(music.beat_phase),
         record_forces=record_forces,
     )
     assert recording is not None

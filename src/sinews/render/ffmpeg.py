@@ -12,19 +12,18 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
+from sinews.music.ffmpeg import find_ffmpeg
 from sinews.render.errors import RenderError
 
 __all__ = ["encode_mp4", "ffmpeg_exe"]
 
 
 def ffmpeg_exe() -> str:
-    """Path of the ffmpeg executable bundled with (or found by) imageio-ffmpeg."""
-    try:
-        import imageio_ffmpeg
-
-        return str(imageio_ffmpeg.get_ffmpeg_exe())
-    except (ImportError, RuntimeError) as exc:
-        raise RenderError(f"ffmpeg is not available ({exc})") from None
+    """Path of the ffmpeg executable (see `sinews.music.ffmpeg.find_ffmpeg`)."""
+    exe = find_ffmpeg()
+    if exe is None:
+        raise RenderError("ffmpeg is not available: pip install imageio-ffmpeg")
+    return exe
 
 
 def _audio_args(audio: Path, offset: float) -> tuple[list[str], list[str]]:
