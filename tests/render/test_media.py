@@ -9,8 +9,8 @@ from pathlib import Path
 import imageio_ffmpeg
 import numpy as np
 import pytest
-from conftest import decode_audio, make_dancer, probe, write_sine_wav
 from PIL import Image, ImageSequence
+from render_helpers import decode_audio, make_dancer, probe, write_sine_wav
 
 from sinews.render import (
     RenderError,

@@ -6,8 +6,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from conftest import make_dancer
 from PIL import Image
+from render_helpers import make_dancer
 
 from sinews.render import RenderError, Style, contact_sheet, plot_fitness
 from sinews.trajectory import Trajectory
