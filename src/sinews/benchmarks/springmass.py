@@ -24,17 +24,27 @@ def _crowd(size: int) -> BodyBatch:
     return BodyBatch.from_bodies(bodies, seeds=range(size))
 
 
-def _rate(batch: BodyBatch, steps: int, backend: str, repeats: int) -> float:
+def _rate(
+    batch: BodyBatch, steps: int, backend: str, repeats: int, drive: np.ndarray | None = None
+) -> float:
     state = batch.initial_state()
 
     def once() -> None:
-        simulate(batch, state, steps, DANCER_ENGINE, record=False, backend=backend)  # type: ignore[arg-type]
+        simulate(
+            batch,
+            state,
+            steps,
+            DANCER_ENGINE,
+            drive=drive,
+            record=False,
+            backend=backend,  # type: ignore[arg-type]
+        )
 
     return float(batch.n_nodes.sum()) * steps / best_time(once, repeats)
 
 
 def run(quick: bool = False) -> list[Measurement]:
-    """Measure P = 16, 256, 2000 (quick: 16, 256) dancers x 600 steps."""
+    """Measure P = 16, 256, 2000 (quick: 16, 256) dancers x 600 steps, then 256 dancing."""
     sizes = (16, 256) if quick else (16, 256, 2000)
     simulate(_crowd(2), _crowd(2).initial_state(), 2, DANCER_ENGINE)  # compile or load the cache
     results = []
@@ -47,4 +57,11 @@ def run(quick: bool = False) -> list[Measurement]:
                 f"P={size} x {STEPS} steps", "node-steps/s", ours, reference, "numpy reference"
             )
         )
+    # responders on: a song-like drive (each band hits about every 17 frames)
+    batch = _crowd(256)
+    drive = (np.random.default_rng(1).random((STEPS, 56)) < 0.06) * 1.0
+    ours = _rate(batch, STEPS, "numba", repeats=3, drive=drive)
+    reference = _rate(batch, 60, "numpy", repeats=1, drive=drive)
+    case = f"P=256 x {STEPS} steps, responders on"
+    results.append(Measurement(case, "node-steps/s", ours, reference, "numpy reference"))
     return results

@@ -37,7 +37,7 @@ def bench(
     for name in names or known:
         if name not in known:
             raise SinewsError(f"no benchmark called {name!r}; choose from {', '.join(known)}")
-    console = Console()
+    console = Console(width=max(Console().width, 120))
     console.print(f"sinews {sinews.__version__} on {os.cpu_count()} cores")
     for name in names or known:
         module = importlib.import_module(f"sinews.benchmarks.{name}")
