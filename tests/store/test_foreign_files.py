@@ -86,7 +86,9 @@ def test_corruption_found_later_is_a_one_line_error(tmp_path: Path) -> None:
     data = bytearray(path.read_bytes())
     data[8192:] = bytes(len(data) - 8192)  # wipe every page after the second
     path.write_bytes(bytes(data))
-    with pytest.raises(StoreError, match="database error|not a usable") as caught:
-        with RunStore(path) as store:
-            store.runs()
+    with (
+        pytest.raises(StoreError, match=r"database error|not a usable") as caught,
+        RunStore(path) as store,
+    ):
+        store.runs()
     assert "\n" not in str(caught.value)

@@ -7,11 +7,12 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
+from rich import box
 from rich.console import Console
 from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn, TimeRemainingColumn
 from rich.table import Table
 
-from sinews.evolve import EVALUATORS, make_evaluator
+from sinews.evolve import EVALUATORS, Evaluator, make_evaluator
 from sinews.experiments import dancer_evolution
 from sinews.experiments.evolution import GenerationSummary
 from sinews.experiments.run_config import load_toml
@@ -41,13 +42,7 @@ def open_store(db: Path | None) -> RunStore:
 
 
 def run_with_progress(
-    store: RunStore,
-    run_id: int,
-    *,
-    executor: str,
-    scheduler: str | None,
-    workers: int | None,
-    generations: int | None = None,
+    store: RunStore, run_id: int, *, evaluator: Evaluator, generations: int | None = None
 ) -> None:
     """Run or resume a dancer run with a progress bar, then print its summary table."""
     console = Console(stderr=True)
@@ -75,12 +70,14 @@ def run_with_progress(
             )
 
         try:
-            with make_evaluator(executor, workers=workers, scheduler=scheduler) as evaluator:
-                dancer_evolution.run_dancers(
-                    store, run_id, evaluator=evaluator, generations=generations, on_generation=show
+            dancer_evolution.run_dancers(
+                store, run_id, evaluator=evaluator, generations=generations, on_generation=show
+            )
+        except BaseException:
+            if store.run(run_id).status == "failed":
+                console.print(
+                    f"run {run_id} stopped; continue it with: sinews runs resume {run_id}"
                 )
-        except KeyboardInterrupt:
-            console.print(f"interrupted; continue with: sinews runs resume {run_id}")
             raise
     print_summary(store, run_id)
 
@@ -88,9 +85,14 @@ def run_with_progress(
 def print_summary(store: RunStore, run_id: int) -> None:
     """A table of best and mean fitness and the best's terms per generation, then the winner."""
     stats = generation_stats(store.scores(run_id))
-    table = Table(title=f"run {run_id}")
-    for column in ("gen", "best", "mean", "failed", *stats.best_terms):
-        table.add_column(column, justify="right", overflow="fold")
+    table = Table(
+        title=f"run {run_id}: fitness, and the terms of each generation's best",
+        box=box.SIMPLE_HEAD,
+        collapse_padding=True,
+        show_edge=False,
+    )
+    for column in ("gen", "best", "mean", "fail", *stats.best_terms):
+        table.add_column(column, justify="right", min_width=len(column))
     for k, generation in enumerate(stats.generations):
         terms = [_number(values[k]) for values in stats.best_terms.values()]
         table.add_row(
@@ -106,9 +108,12 @@ def print_summary(store: RunStore, run_id: int) -> None:
         best = store.best(run_id)
         console.print(
             f"best: individual {best.id} (generation {best.generation}, #{best.index}), "
-            f"fitness {_number(best.fitness)}\n"
-            f"  sinews runs best {run_id} -o dancer.json · "
-            f"sinews render {run_id} --best -o best.mp4 · sinews plot {run_id} -o fitness.png"
+            f"fitness {_number(best.fitness)}",
+            f"  sinews runs best {run_id} -o dancer.json",
+            f"  sinews render {run_id} --best -o best.mp4",
+            f"  sinews plot {run_id} -o fitness.png",
+            sep="\n",
+            highlight=False,
         )
 
 
@@ -163,14 +168,17 @@ def dancers(
             "strategy": strategy,
         },
     )
-    with open_store(db) as store:
-        started = time.perf_counter()
+    started = time.perf_counter()
+    with (
+        open_store(db) as store,
+        make_evaluator(executor, workers=workers, scheduler=scheduler) as evaluator,
+    ):
         run_id = dancer_evolution.create_dancer_run(
             store, run_config, song=song_name, seconds=length
         )
         typer.echo(f"run {run_id} in {store.path}", err=True)
-        run_with_progress(store, run_id, executor=executor, scheduler=scheduler, workers=workers)
-        typer.echo(f"{time.perf_counter() - started:.1f} s", err=True)
+        run_with_progress(store, run_id, evaluator=evaluator)
+    typer.echo(f"{time.perf_counter() - started:.1f} s", err=True)
 
 
 def register(app: typer.Typer) -> None:

@@ -9,12 +9,20 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
-from sinews.cli.evolve import Db, Executor, Scheduler, Workers, open_store, print_summary
-from sinews.cli.evolve import run_with_progress as _run_with_progress
+from sinews.cli.evolve import (
+    Db,
+    Executor,
+    Scheduler,
+    Workers,
+    open_store,
+    print_summary,
+    run_with_progress,
+)
 from sinews.dancers import DancerGenome
 from sinews.errors import SinewsError
+from sinews.evolve import make_evaluator
 from sinews.experiments import dancer_evolution
-from sinews.store import Individual, RunStore, export_run, generation_stats
+from sinews.store import Individual, RunStore, code_version, export_run, generation_stats
 
 __all__ = ["register"]
 
@@ -126,14 +134,14 @@ def resume(
         if info.status == "finished" and info.generations >= target:
             typer.echo(f"run {run} is finished ({info.generations} generations)", err=True)
             return
-        _run_with_progress(
-            store,
-            run,
-            executor=executor,
-            scheduler=scheduler,
-            workers=workers,
-            generations=generations,
-        )
+        if info.code_version != code_version():
+            typer.echo(
+                f"warning: run {run} was started by sinews {info.code_version}, this is "
+                f"{code_version()}; new generations may differ from an uninterrupted run",
+                err=True,
+            )
+        with make_evaluator(executor, workers=workers, scheduler=scheduler) as evaluator:
+            run_with_progress(store, run, evaluator=evaluator, generations=generations)
 
 
 @runs_app.command("export")
@@ -181,12 +189,13 @@ def plot(run: Run, output: Output, db: Db = None) -> None:
     from sinews.render import plot_fitness
 
     with open_store(db) as store:
+        info = store.run(run)
         stats = generation_stats(store.scores(run))
         if not len(stats.generations):
             raise SinewsError(f"run {run} has no scored generations yet")
         series = {"best": stats.best, "mean": stats.mean, **stats.best_terms}
-        info = store.run(run)
-        title = f"run {run}: {info.kind}, {info.config.get('song', '')}"
+        song = info.config.get("song", "")
+        title = f"run {run}: {info.kind}{f' to {song}' if song else ''} (terms of each best)"
         path = plot_fitness(stats.generations, series, output, title)
         store.add_media(run, path, kind=path.suffix.lstrip(".").lower())
     typer.echo(f"wrote {path}")

@@ -21,6 +21,7 @@ import os
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
 from multiprocessing import get_context
 from types import TracebackType
 from typing import Any, ClassVar, TypeVar
@@ -115,7 +116,10 @@ class ProcessEvaluator(Evaluator):
 
     def map(self, fn: Callable[[C, T], R], context: C, chunks: Sequence[T]) -> list[R]:
         futures = [self._pool.submit(_in_one_thread, fn, context, chunk) for chunk in chunks]
-        return [future.result() for future in futures]
+        try:
+            return [future.result() for future in futures]
+        except BrokenProcessPool:
+            raise SinewsError("a worker process died (out of memory, or killed)") from None
 
     def close(self) -> None:
         self._pool.shutdown(cancel_futures=True)

@@ -83,7 +83,7 @@ def dancer_config(
     if not extra["song"]:
         raise SinewsError("give a song: --song FILE or --song demo:groove")
     seconds = extra["seconds"]
-    if seconds is not None and not 0 < float(seconds):
+    if seconds is not None and not float(seconds) > 0:
         raise SinewsError(f"seconds must be positive, got {seconds}")
     return config, str(extra["song"]), None if seconds is None else float(seconds)
 

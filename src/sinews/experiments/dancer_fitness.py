@@ -9,7 +9,7 @@ fitness.
 | term | what it rewards | range |
 |---|---|---|
 | ``beat-align`` | the body's pauses fall on the beats (AIST++ Beat Align Score) | 0 … 1 |
-| ``liveliness`` | motion energy: mean node speed | m/s, ≥ 0 |
+| ``liveliness`` | motion energy: mean node speed from frame to frame | m/s, ≥ 0 |
 | ``humanoid`` | staying humanoid: minus (mean spring strain + fraction of frames collapsed) | ≤ 0 |
 | ``on-stage`` | staying near home: minus the mean sideways distance from the start | m, ≤ 0 |
 | ``variety`` | limbs not moving as one: 1 − mean correlation of the extremities' speeds | 0 … 1 |
@@ -25,7 +25,7 @@ import numpy.typing as npt
 
 from sinews.dancers import DancerGenome
 from sinews.experiments.dancers import dance
-from sinews.music.beat_align import beat_align_score, mean_speed
+from sinews.music.beat_align import beat_align_score
 from sinews.music.features import MusicFeatures
 from sinews.trajectory import Trajectory
 
@@ -57,8 +57,9 @@ def beat_align(traj: Trajectory) -> float:
 
 
 def liveliness(traj: Trajectory) -> float:
-    """Motion energy: the mean node speed over the dance, in m/s."""
-    return float(mean_speed(traj.positions, traj.fps).mean())
+    """Motion energy: the mean speed of the nodes from frame to frame, in m/s."""
+    step = np.diff(traj.positions, axis=0)
+    return float(np.hypot(step[..., 0], step[..., 1]).mean(dtype=np.float64) * traj.fps)
 
 
 def humanoid(traj: Trajectory) -> float:
@@ -68,11 +69,11 @@ def humanoid(traj: Trajectory) -> float:
     frames; a frame is collapsed when the body's height (top minus bottom
     node) is under `COLLAPSED` of its height at frame 0.
     """
-    pos = traj.positions.astype(np.float64)
-    ends = pos[:, traj.edges[:, 0]] - pos[:, traj.edges[:, 1]]
-    length = np.linalg.norm(ends, axis=2)
-    strain = np.abs(length / np.maximum(length[0], 1e-9) - 1.0).mean()
-    height = pos[:, :, 1].max(axis=1) - pos[:, :, 1].min(axis=1)
+    x, y = traj.positions[:, :, 0], traj.positions[:, :, 1]
+    i, j = traj.edges[:, 0], traj.edges[:, 1]
+    length = np.hypot(x[:, i] - x[:, j], y[:, i] - y[:, j])
+    strain = np.abs(length / np.maximum(length[0], 1e-9) - 1.0).mean(dtype=np.float64)
+    height = y.max(axis=1) - y.min(axis=1)
     collapsed = (height < COLLAPSED * height[0]).mean()
     return -float(strain + collapsed)
 
@@ -91,12 +92,12 @@ def variety(traj: Trajectory) -> float:
     """
     names = traj.node_names
     nodes = [names.index(n) for n in EXTREMITIES if n in names] or list(range(len(names)))
-    pos = traj.positions.astype(np.float64)
-    relative = pos[:, nodes] - pos.mean(axis=1, keepdims=True)
-    speed = np.linalg.norm(np.gradient(relative, axis=0), axis=2)  # (T, K)
-    if len(nodes) < 2 or len(speed) < 3:
+    if len(nodes) < 2 or traj.n_frames < 3:
         return 0.0
-    moving = speed.std(axis=0) > 1e-12
+    relative = traj.positions[:, nodes] - traj.positions.mean(axis=1, keepdims=True)
+    step = np.diff(relative, axis=0)
+    speed = np.hypot(step[..., 0], step[..., 1]).astype(np.float64)  # (T-1, K)
+    moving = speed.std(axis=0) > 1e-9
     with np.errstate(invalid="ignore", divide="ignore"):
         corr = np.corrcoef(speed.T)
     corr = np.where(moving[:, None] & moving[None, :], np.abs(corr), 1.0)

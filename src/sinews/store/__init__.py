@@ -14,7 +14,7 @@ from sinews.store.codec import CODECS, decode_genome, encode_genome
 from sinews.store.errors import StoreError
 from sinews.store.export import export_run
 from sinews.store.records import GenerationRecord, Individual, Media, RunInfo, ScoreTable
-from sinews.store.runs import RunStore, default_db_path
+from sinews.store.runs import RunStore, code_version, default_db_path
 from sinews.store.schema import APPLICATION_ID, SCHEMA_VERSION
 from sinews.store.stats import GenerationStats, generation_stats
 
@@ -30,6 +30,7 @@ __all__ = [
     "RunStore",
     "ScoreTable",
     "StoreError",
+    "code_version",
     "decode_genome",
     "default_db_path",
     "encode_genome",

@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 import os
 import sqlite3
+import subprocess
 from collections.abc import Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from datetime import UTC, datetime
@@ -34,7 +35,7 @@ from sinews.store.records import (
 )
 from sinews.store.schema import connect
 
-__all__ = ["RunStore", "default_db_path"]
+__all__ = ["RunStore", "code_version", "default_db_path"]
 
 _RUN_COLUMNS = (
     "id, kind, config, seed, song_hash, song_path, code_version, genome_codec, status, "
@@ -55,6 +56,24 @@ def default_db_path() -> Path:
     import platformdirs
 
     return Path(platformdirs.user_data_dir("sinews")) / "sinews.db"
+
+
+def code_version() -> str:
+    """This sinews's version, plus ``+g<commit>[.dirty]`` when it runs from a git checkout."""
+    root = Path(sinews.__file__).resolve().parents[2]
+    if not (root / ".git").exists():
+        return sinews.__version__
+    try:
+        described = subprocess.run(
+            ["git", "-C", str(root), "describe", "--always", "--dirty=.dirty", "--abbrev=10"],
+            capture_output=True,
+            text=True,
+            timeout=10,
+            check=True,
+        ).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return sinews.__version__
+    return f"{sinews.__version__}+g{described}"
 
 
 def _now() -> str:
@@ -139,7 +158,7 @@ class RunStore:
             cursor = conn.execute(
                 "INSERT INTO runs (kind, config, seed, song_hash, song_path, code_version, "
                 "genome_codec, status, created, updated) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
-                (kind, json.dumps(config), seed, song_hash, song_path, sinews.__version__,
+                (kind, json.dumps(config), seed, song_hash, song_path, code_version(),
                  genome_codec, "running", now, now),
             )  # fmt: skip
         assert cursor.lastrowid is not None
