@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib.util
+import operator
 from pathlib import Path
 
 import numpy as np
@@ -89,3 +90,16 @@ def test_runs_are_identical_on_every_executor(
     other_genomes, other_fitness, _ = evolve(tmp_path, executor)
     np.testing.assert_array_equal(other_genomes, genomes)
     np.testing.assert_array_equal(other_fitness, fitness)
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(not HAS_DASK, reason="dask[distributed] not installed")
+def test_dask_connects_to_a_scheduler_address() -> None:
+    from sinews.evolve import DaskEvaluator
+
+    with (
+        DaskEvaluator(workers=1) as local,
+        make_evaluator("dask", scheduler=local.address) as remote,
+    ):
+        assert remote.n_workers == 1
+        assert remote.map(operator.mul, 3, [1, 2, 3]) == [3, 6, 9]

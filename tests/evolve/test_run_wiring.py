@@ -11,9 +11,9 @@ from sinews.dancers import DancerGenome
 from sinews.errors import SinewsError
 from sinews.evolve import SerialEvaluator
 from sinews.experiments.dancer_evolution import (
-    DancerScorer,
     create_dancer_run,
     dancer_config,
+    pick_dancers,
     run_dancers,
     run_music,
     simulate_individual,
@@ -109,15 +109,7 @@ def test_interactive_run_advances_by_picks_in_one_transaction(tmp_path: Path) ->
         run = start(store, strategy="interactive")
         run_dancers(store, run, evaluator=SerialEvaluator())
         assert store.last_generation(run) == 0 and store.run(run).status == "running"
-        info = store.run(run)
-        scorer = DancerScorer(
-            music=run_music(info)[0],
-            seconds=2.0,
-            spec=EvolutionConfig.from_dict(info.config).fitness,
-            evaluator=SerialEvaluator(),
-        )
-        summary = record_picks(store, run, 0, [1, 4], genome_size=DancerGenome.SIZE,
-                               scorer=scorer, spec=scorer.spec)  # fmt: skip
+        summary = pick_dancers(store, run, 0, [1, 4])
         assert summary.generation == 1 and summary.best is not None
         before, after = store.individuals(run, 0), store.individuals(run, 1)
         assert [i.picked for i in before] == [False, True, False, False, True, False]
@@ -125,9 +117,10 @@ def test_interactive_run_advances_by_picks_in_one_transaction(tmp_path: Path) ->
         picked_ids = {before[1].id, before[4].id}
         assert all(set(i.parents) <= picked_ids and i.parents for i in after)
         with pytest.raises(SinewsError, match="picks are for generation 1, not 0"):
-            record_picks(store, run, 0, [2], genome_size=DancerGenome.SIZE)
+            pick_dancers(store, run, 0, [2])
         record_picks(store, run, 1, [], genome_size=DancerGenome.SIZE)
-        assert store.individuals(run, 2)[0].fitness is None
+        fresh = store.individuals(run, 2)
+        assert fresh[0].fitness is None and all(not i.parents for i in fresh)
 
 
 def test_a_ga_run_refuses_picks_and_can_be_extended(tmp_path: Path) -> None:
@@ -140,6 +133,10 @@ def test_a_ga_run_refuses_picks_and_can_be_extended(tmp_path: Path) -> None:
         run_dancers(store, run, evaluator=SerialEvaluator(), generations=3)
         info = store.run(run)
         assert (info.generations, info.status, info.config["generations"]) == (3, "finished", 3)
+        for individual in store.individuals(run, 2):
+            ancestry = store.lineage(individual.id)
+            assert ancestry[-1].generation == 0
+            assert all(a.parents for a in ancestry if a.generation > 0)
         with pytest.raises(SinewsError, match="already has 3 generations"):
             run_dancers(store, run, evaluator=SerialEvaluator(), generations=2)
 

@@ -162,6 +162,11 @@ class DaskEvaluator(Evaluator):
             raise SinewsError(f"cannot reach the Dask scheduler {scheduler}: {exc}") from None
         self.n_workers = max(1, len(self._client.scheduler_info()["workers"]))
 
+    @property
+    def address(self) -> str:
+        """The scheduler's address (e.g. of the local cluster, for other clients)."""
+        return str(self._client.scheduler_info()["address"])
+
     def map(self, fn: Callable[[C, T], R], context: C, chunks: Sequence[T]) -> list[R]:
         shared = self._client.scatter(context, broadcast=True, hash=False)
         futures = [

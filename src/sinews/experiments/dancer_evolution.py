@@ -19,10 +19,16 @@ import numpy.typing as npt
 
 from sinews.dancers import DancerGenome
 from sinews.errors import SinewsError
-from sinews.evolve import Evaluator, FitnessSpec, chunk_slices
+from sinews.evolve import Evaluator, FitnessSpec, SerialEvaluator, chunk_slices
 from sinews.experiments.dancer_fitness import DEFAULT_WEIGHTS, DancerContext, score_chunk
 from sinews.experiments.dancers import dance
-from sinews.experiments.evolution import GenerationSummary, Scores, continue_run, new_strategy
+from sinews.experiments.evolution import (
+    GenerationSummary,
+    Scores,
+    continue_run,
+    new_strategy,
+    record_picks,
+)
 from sinews.experiments.run_config import EvolutionConfig, build_config
 from sinews.music.analysis import analyse_file
 from sinews.music.demo import DEMO_NAMES, write_demo
@@ -36,6 +42,7 @@ __all__ = [
     "DancerScorer",
     "create_dancer_run",
     "dancer_config",
+    "pick_dancers",
     "run_dancers",
     "run_music",
     "simulate_individual",
@@ -188,22 +195,60 @@ def run_dancers(
         on_generation: called after each stored generation.
     """
     info = store.run(run_id)
-    music, _ = run_music(info)
     if generations is not None and generations != info.config["generations"]:
         if generations < info.generations:
             raise SinewsError(f"run {run_id} already has {info.generations} generations")
         store.update_config(run_id, {**info.config, "generations": generations})
-    config = EvolutionConfig.from_dict(info.config)
-    scorer = DancerScorer(
-        music=music, seconds=float(info.config["seconds"]), spec=config.fitness, evaluator=evaluator
-    )
+    scorer = _scorer(store.run(run_id), evaluator)
     continue_run(
         store,
         run_id,
         scorer=scorer,
-        spec=config.fitness,
+        spec=scorer.spec,
         genome_size=DancerGenome.SIZE,
         on_generation=on_generation,
+    )
+
+
+def pick_dancers(
+    store: RunStore,
+    run_id: int,
+    generation: int,
+    picks: list[int],
+    *,
+    evaluator: Evaluator | None = None,
+) -> GenerationSummary:
+    """The studio's hook: record a person's picks and breed the next generation of dancers.
+
+    The picks (indices in ``generation``, the run's last) are told to the
+    run's interactive or hybrid strategy; the next generation is danced,
+    scored and stored with the picked flags in one transaction.
+
+    Args:
+        store: the run store.
+        run_id: an interactive or hybrid dancer run.
+        generation: the generation the person picked from (must be the last).
+        picks: indices of the picked dancers (empty: a fresh random
+            generation for an interactive run).
+        evaluator: where to dance the new generation (default: this process).
+    """
+    scorer = _scorer(store.run(run_id), evaluator or SerialEvaluator())
+    return record_picks(
+        store,
+        run_id,
+        generation,
+        picks,
+        genome_size=DancerGenome.SIZE,
+        scorer=scorer,
+        spec=scorer.spec,
+    )
+
+
+def _scorer(info: RunInfo, evaluator: Evaluator) -> DancerScorer:
+    music, _ = run_music(info)
+    spec = EvolutionConfig.from_dict(info.config).fitness
+    return DancerScorer(
+        music=music, seconds=float(info.config["seconds"]), spec=spec, evaluator=evaluator
     )
 
 
