@@ -71,8 +71,11 @@ class Canvas(Protocol):
         ...
 
     def arrow(self, start: Point, end: Point, color: Color, width: float = 1.0) -> None:
-        """A line from ``start`` with a triangular head at ``end``."""
-        ...
+        """A line from ``start`` with a triangular head at ``end`` (built from
+        `line` and `polygon`; canvases that subclass `Canvas` inherit it)."""
+        shaft_end, head = arrow_geometry(start, end, width)
+        self.line(start, shaft_end, color, width)
+        self.polygon(head, color)
 
     def text(
         self,

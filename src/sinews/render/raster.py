@@ -9,7 +9,7 @@ import numpy as np
 import numpy.typing as npt
 from PIL import Image, ImageDraw, ImageFont
 
-from sinews.render.canvas import ANCHORS, Color, Point, arrow_geometry
+from sinews.render.canvas import ANCHORS, Canvas, Color, Point
 from sinews.render.errors import RenderError
 
 __all__ = ["RasterCanvas"]
@@ -47,7 +47,7 @@ def _text_sprite(
     return sprite, (left, top)
 
 
-class RasterCanvas:
+class RasterCanvas(Canvas):
     """Draws into an RGB image ``supersample`` times larger, then box-downsamples.
 
     Pillow's primitives are not anti-aliased; averaging ``supersample``²
@@ -134,12 +134,6 @@ class RasterCanvas:
             outline=outline,
             width=self._w(width) if outline is not None else 0,
         )
-
-    def arrow(self, start: Point, end: Point, color: Color, width: float = 1.0) -> None:
-        """A line with a triangular head at ``end``."""
-        shaft_end, head = arrow_geometry(start, end, width)
-        self.line(start, shaft_end, color, width)
-        self.polygon(head, color)
 
     def text(
         self,

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from xml.sax.saxutils import escape, quoteattr
 
-from sinews.render.canvas import ANCHORS, Color, Point, arrow_geometry
+from sinews.render.canvas import ANCHORS, Canvas, Color, Point
 from sinews.render.errors import RenderError
 
 __all__ = ["SvgCanvas"]
@@ -34,7 +34,7 @@ def _paint(fill: Color | None, outline: Color | None, width: float) -> str:
     return f'fill="{_hex(fill)}"{stroke}'
 
 
-class SvgCanvas:
+class SvgCanvas(Canvas):
     """Records drawing calls as SVG elements.
 
     Args:
@@ -93,12 +93,6 @@ class SvgCanvas:
             f'<polygon points="{_points(points)}" {_paint(fill, outline, width)} '
             'stroke-linejoin="round"/>'
         )
-
-    def arrow(self, start: Point, end: Point, color: Color, width: float = 1.0) -> None:
-        """A line with a triangular head at ``end``."""
-        shaft_end, head = arrow_geometry(start, end, width)
-        self.line(start, shaft_end, color, width)
-        self.polygon(head, color)
 
     def text(
         self,
