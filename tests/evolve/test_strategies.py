@@ -67,6 +67,8 @@ def test_misuse_is_refused_with_a_clear_error() -> None:
         ({"mutation_rate": 1.5}, "mutation_rate"),
         ({"crossover": "one-point"}, "crossover"),
         ({"bogus": 1}, "unknown option 'bogus'"),
+        ({"mutation_sigma": "big"}, "bad option value"),
+        ({"elites": "two"}, "bad option value"),
     ],
 )
 def test_bad_options_are_refused(options: dict[str, object], message: str) -> None:

@@ -220,13 +220,16 @@ class Strategy(ABC):
             raise StrategyError(
                 f"unknown option {unknown[0]!r} for strategy {name!r}; known: {known}"
             )
-        return kind(
-            population_size=population_size,
-            genome_size=genome_size,
-            rng=rng,
-            variation=Variation(**{k: v for k, v in options.items() if k in shared}),
-            **{k: v for k, v in options.items() if k not in shared},
-        )
+        try:
+            return kind(
+                population_size=population_size,
+                genome_size=genome_size,
+                rng=rng,
+                variation=Variation(**{k: v for k, v in options.items() if k in shared}),
+                **{k: v for k, v in options.items() if k not in shared},
+            )
+        except (TypeError, ValueError):
+            raise StrategyError(f"bad option value for strategy {name!r}: {options}") from None
 
     def to_state(self) -> dict[str, Any]:
         """The whole state as a JSON-safe dict (see `from_state`)."""

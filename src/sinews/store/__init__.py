@@ -11,10 +11,11 @@ run stores its genomes through a codec and its own fitness terms.
 from __future__ import annotations
 
 from sinews.store.codec import CODECS, decode_genome, encode_genome
+from sinews.store.environment import code_version, default_db_path
 from sinews.store.errors import StoreError
 from sinews.store.export import export_run
 from sinews.store.records import GenerationRecord, Individual, Media, RunInfo, ScoreTable
-from sinews.store.runs import RunStore, code_version, default_db_path
+from sinews.store.runs import RunStore
 from sinews.store.schema import APPLICATION_ID, SCHEMA_VERSION
 from sinews.store.stats import GenerationStats, generation_stats
 

@@ -11,7 +11,6 @@ from __future__ import annotations
 import json
 import os
 import sqlite3
-import subprocess
 from collections.abc import Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from datetime import UTC, datetime
@@ -22,8 +21,8 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-import sinews
 from sinews.store.codec import CODECS, decode_genome, encode_genome
+from sinews.store.environment import code_version, default_db_path
 from sinews.store.errors import StoreError
 from sinews.store.records import (
     RUN_STATUSES,
@@ -35,7 +34,7 @@ from sinews.store.records import (
 )
 from sinews.store.schema import connect
 
-__all__ = ["RunStore", "code_version", "default_db_path"]
+__all__ = ["RunStore"]
 
 _RUN_COLUMNS = (
     "id, kind, config, seed, song_hash, song_path, code_version, genome_codec, status, "
@@ -49,31 +48,6 @@ _INDIVIDUAL_COLUMNS = (
     "(SELECT group_concat(parent) FROM (SELECT parent FROM parents p "
     "WHERE p.child = i.id ORDER BY slot))"
 )
-
-
-def default_db_path() -> Path:
-    """``<user data dir>/sinews/sinews.db`` (platformdirs)."""
-    import platformdirs
-
-    return Path(platformdirs.user_data_dir("sinews")) / "sinews.db"
-
-
-def code_version() -> str:
-    """This sinews's version, plus ``+g<commit>[.dirty]`` when it runs from a git checkout."""
-    root = Path(sinews.__file__).resolve().parents[2]
-    if not (root / ".git").exists():
-        return sinews.__version__
-    try:
-        described = subprocess.run(
-            ["git", "-C", str(root), "describe", "--always", "--dirty=.dirty", "--abbrev=10"],
-            capture_output=True,
-            text=True,
-            timeout=10,
-            check=True,
-        ).stdout.strip()
-    except (OSError, subprocess.SubprocessError):
-        return sinews.__version__
-    return f"{sinews.__version__}+g{described}"
 
 
 def _now() -> str:

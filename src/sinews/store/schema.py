@@ -134,7 +134,7 @@ def _identify_and_migrate(conn: sqlite3.Connection, path: Path) -> None:
     app_id = conn.execute("PRAGMA application_id").fetchone()[0]
     version = conn.execute("PRAGMA user_version").fetchone()[0]
     if app_id != APPLICATION_ID:
-        tables = conn.execute("SELECT count(*) FROM sqlite_schema").fetchone()[0]
+        tables = conn.execute("SELECT count(*) FROM sqlite_master").fetchone()[0]
         if app_id != 0 or tables or version:
             raise StoreError(
                 f"{path}: an SQLite database of another application, not sinews; "
