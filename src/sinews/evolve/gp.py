@@ -92,7 +92,7 @@ class GPVariation:
         if not 0 <= low <= high <= self.max_depth:
             raise StrategyError("init_depth must be (min, max) with 0 <= min <= max <= max_depth")
         try:
-            self.limits  # noqa: B018 -- validates max_depth and max_size
+            Limits(max_depth=self.max_depth, max_size=self.max_size)
         except GPError as exc:
             raise StrategyError(str(exc)) from None
 
@@ -107,10 +107,9 @@ def tournament_select(
 ) -> IntArray:
     """``count`` winners of tournaments of ``size`` random contestants (ties: lowest index)."""
     contestants = rng.integers(0, len(fitness), size=(count, size))
-    best = np.argmax(fitness[contestants] + 0.0 * contestants, axis=1)
-    first = contestants[np.arange(count), best]
-    ties = fitness[contestants] == fitness[first][:, None]
-    return np.where(ties, contestants, len(fitness)).min(axis=1).astype(np.int64)
+    values = fitness[contestants]
+    winners = values == values.max(axis=1, keepdims=True)
+    return np.where(winners, contestants, len(fitness)).min(axis=1).astype(np.int64)
 
 
 def proportionate(fitness: FloatArray, count: int, *, rng: np.random.Generator) -> IntArray:
@@ -123,7 +122,8 @@ def proportionate(fitness: FloatArray, count: int, *, rng: np.random.Generator) 
     finite = np.isfinite(fitness)
     if not finite.any():
         return rng.integers(0, len(fitness), size=count).astype(np.int64)
-    adjusted = np.where(finite, 1.0 / (1.0 + (fitness[finite].max() - np.where(finite, fitness, 0))), 0)
+    standardized = fitness[finite].max() - np.where(finite, fitness, 0.0)
+    adjusted = np.where(finite, 1.0 / (1.0 + standardized), 0.0)
     return rng.choice(len(fitness), size=count, p=adjusted / adjusted.sum()).astype(np.int64)
 
 
