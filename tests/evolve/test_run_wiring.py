@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import dataclasses
+import math
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -10,6 +13,7 @@ import pytest
 from sinews.dancers import DancerGenome
 from sinews.errors import SinewsError
 from sinews.evolve import SerialEvaluator
+from sinews.experiments import dancer_fitness
 from sinews.experiments.dancer_evolution import (
     create_dancer_run,
     dancer_config,
@@ -22,7 +26,8 @@ from sinews.experiments.dancer_evolution import (
 from sinews.experiments.dancer_fitness import beat_align
 from sinews.experiments.evolution import record_picks
 from sinews.experiments.run_config import EvolutionConfig, load_toml
-from sinews.store import RunStore
+from sinews.store import RunStore, generation_stats
+from sinews.trajectory import Trajectory
 
 SONG = str(Path(__file__).resolve().parents[1] / "data" / "loop_mika.flac")
 
@@ -161,3 +166,28 @@ def test_a_changed_song_is_detected(tmp_path: Path) -> None:
         song.write_bytes((Path(SONG).parent / "loop_compus.flac").read_bytes())
         with pytest.raises(SinewsError, match="the song has changed since run 1 started"):
             run_music(store.run(run))
+
+
+def test_blown_up_dancers_get_the_worst_fitness_and_the_run_goes_on(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    real_dance = dancer_fitness.dance
+
+    def first_blows_up(*args: Any, **kwargs: Any) -> list[Trajectory]:
+        trajs = real_dance(*args, **kwargs)
+        return [dataclasses.replace(trajs[0], failed=True), *trajs[1:]]
+
+    monkeypatch.setattr(dancer_fitness, "dance", first_blows_up)
+    with RunStore(tmp_path / "runs.db") as store:
+        run = start(store, generations=3)
+        run_dancers(store, run, evaluator=SerialEvaluator())
+        assert store.run(run).status == "finished"
+        for generation in range(3):
+            first, *others = store.individuals(run, generation)
+            assert first.failed and first.fitness == -math.inf
+            assert first.terms == dict.fromkeys(first.terms or {}) and first.terms
+            assert all(not i.failed and math.isfinite(i.fitness or math.nan) for i in others)
+        elite = store.individuals(run, 1)[0]
+        assert store.individual(elite.parents[0]).index != 0
+        stats = generation_stats(store.scores(run))
+        assert stats.failed.tolist() == [1, 1, 1] and np.isfinite(stats.mean).all()
