@@ -53,12 +53,14 @@ def run_with_progress(
         TextColumn("[bold]run {task.fields[run]}[/] generation {task.completed}/{task.total}"),
         BarColumn(),
         TaskProgressColumn(),
-        TextColumn("best {task.fields[best]} mean {task.fields[mean]}"),
+        TextColumn(
+            "best {task.fields[best]} mean {task.fields[mean]} failed {task.fields[failed]}"
+        ),
         TimeRemainingColumn(),
     )
     with Progress(*columns, console=console, transient=False) as progress:
         task = progress.add_task(
-            "evolve", total=total, completed=done, run=run_id, best="-", mean="-"
+            "evolve", total=total, completed=done, run=run_id, best="-", mean="-", failed=0
         )
 
         def show(summary: GenerationSummary) -> None:
@@ -67,6 +69,7 @@ def run_with_progress(
                 completed=summary.generation + 1,
                 best=_number(summary.best),
                 mean=_number(summary.mean),
+                failed=summary.failed,
             )
 
         try:

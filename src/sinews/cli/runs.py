@@ -90,7 +90,7 @@ def best(run: Run, output: Output, db: Db = None) -> None:
         _dancer_genome(store, individual).save(output)
         typer.echo(
             f"wrote {output} (individual {individual.id}, generation {individual.generation}, "
-            f"fitness {_number(individual.fitness)})"
+            f"fitness {_number(individual.fitness)}, wiggle seed {individual.seed})"
         )
 
 
@@ -174,7 +174,6 @@ def render(
         chosen = store.best(run) if individual is None else store.individual(individual)
         if chosen.run_id != run:
             raise SinewsError(f"individual {chosen.id} belongs to run {chosen.run_id}, not {run}")
-        _dancer_genome(store, chosen)
         traj, song = dancer_evolution.simulate_individual(
             store, chosen, record_forces=debug_overlay
         )

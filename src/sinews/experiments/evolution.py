@@ -82,7 +82,6 @@ class GenerationSummary:
     Attributes:
         run_id: the run.
         generation: the generation just stored.
-        last: the last generation the run will make.
         best: its best fitness (None when not scored).
         mean: its mean fitness over individuals that did not fail.
         failed: how many individuals failed.
@@ -91,7 +90,6 @@ class GenerationSummary:
 
     run_id: int
     generation: int
-    last: int
     best: float | None
     mean: float | None
     failed: int
@@ -195,7 +193,6 @@ def advance(
     return GenerationSummary(
         run_id=run_id,
         generation=generation,
-        last=int(info.config.get("generations", generation + 1)) - 1,
         best=None if total is None else float(total.max()),
         mean=float(ok.mean()) if len(ok) else None,
         failed=int(failed.sum()),
