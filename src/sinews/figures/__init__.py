@@ -10,7 +10,7 @@ from __future__ import annotations
 from sinews.figures.figure import Figure, FigureError
 from sinews.figures.humanoid import HumanoidShape, humanoid, humanoid_mjcf
 from sinews.figures.luxo import LuxoShape, luxo, luxo_mjcf
-from sinews.figures.rollout import RolloutResult, rollout
+from sinews.figures.rollout import Observer, RolloutResult, rollout
 from sinews.figures.sensors import sensor_columns
 from sinews.figures.snake import SnakeShape, snake, snake_mjcf
 
@@ -19,6 +19,7 @@ __all__ = [
     "FigureError",
     "HumanoidShape",
     "LuxoShape",
+    "Observer",
     "RolloutResult",
     "SnakeShape",
     "humanoid",

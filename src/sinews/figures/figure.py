@@ -7,7 +7,9 @@ the bodies and their parent links (for drawing), and the sensor columns (see
 `sinews.figures.sensors`).
 
 `Figure.from_mjcf` is the one constructor: it checks the MJCF, adds a contact
-sensor per base/head body, and reads everything else from the compiled model,
+sensor per base/head body (and per optional touch body, e.g. an obstacle a
+task places in the scene) and a position sensor per optional tracked site (a
+hand, a nose), and reads everything else from the compiled model,
 so a user's own MJCF works exactly like the built-in figures if it has
 
 - a planar root: the first body's first three joints are slide x, slide z and
@@ -32,7 +34,7 @@ import numpy.typing as npt
 
 from sinews.errors import SinewsError
 from sinews.figures._mujoco import require_mujoco
-from sinews.figures.sensors import contact_sensor_name, sensor_columns
+from sinews.figures.sensors import contact_sensor_name, sensor_columns, site_sensor_name
 
 if TYPE_CHECKING:
     import mujoco
@@ -65,6 +67,8 @@ class Figure:
         body_names: (B,) every body but the world, in model order.
         edges: (E, 2) int32 parent-child links as indices into ``body_names``.
         sensor_names: (S,) names of the sensor columns.
+        touch_bodies: further bodies with a contact-force column (e.g. a limbo pole).
+        sites: sites whose world x and z are sensor columns (e.g. a hand).
     """
 
     name: str
@@ -79,6 +83,8 @@ class Figure:
     body_names: tuple[str, ...]
     edges: npt.NDArray[np.int32]
     sensor_names: tuple[str, ...]
+    touch_bodies: tuple[str, ...] = ()
+    sites: tuple[str, ...] = ()
 
     @property
     def n_actuators(self) -> int:
@@ -92,8 +98,8 @@ class Figure:
 
     @property
     def contact_bodies(self) -> tuple[str, ...]:
-        """Bodies with a contact-force column: base/feet first, then head."""
-        return tuple(dict.fromkeys((*self.base_bodies, *self.head_bodies)))
+        """Bodies with a contact-force column: base/feet first, then head, then touch bodies."""
+        return tuple(dict.fromkeys((*self.base_bodies, *self.head_bodies, *self.touch_bodies)))
 
     def sensor_index(self, column: str) -> int:
         """Index of the sensor column named ``column`` (e.g. ``"root_x"``)."""
@@ -118,6 +124,8 @@ class Figure:
         base_bodies: Sequence[str],
         head_bodies: Sequence[str] = (),
         neutral: npt.ArrayLike | None = None,
+        touch_bodies: Sequence[str] = (),
+        sites: Sequence[str] = (),
     ) -> Figure:
         """Make a figure from MJCF text with a planar root and position servos.
 
@@ -127,22 +135,28 @@ class Figure:
             base_bodies: names of the bodies that count as base or feet.
             head_bodies: names of the bodies that count as head.
             neutral: (n_act,) neutral angles, rad; default the joints' ``qpos0``.
+            touch_bodies: further bodies whose contact force is sensed.
+            sites: sites whose world position is sensed.
 
         Returns:
-            The figure, whose MJCF has a contact sensor per base/head body added.
+            The figure, whose MJCF has a contact sensor per base/head/touch body
+            and a position sensor per site added.
 
         Raises:
             FigureError: the MJCF does not compile or breaks one of the rules above.
         """
-        contact = tuple(dict.fromkeys((*base_bodies, *head_bodies)))
+        contact = tuple(dict.fromkeys((*base_bodies, *head_bodies, *touch_bodies)))
         if not base_bodies:
             raise FigureError(f"{name}: name at least one base or foot body")
         model = _compile(xml)
         missing = [b for b in contact if _id(model, "body", b) < 0]
         if missing:
             raise FigureError(f"{name}: no body named {', '.join(map(repr, missing))}")
+        missing = [s for s in sites if _id(model, "site", s) < 0]
+        if missing:
+            raise FigureError(f"{name}: no site named {', '.join(map(repr, missing))}")
         _check_planar_root(model, name)
-        xml = _with_contact_sensors(xml, contact)
+        xml = _with_sensors(xml, contact, sites)
         model = _compile(xml)
         joints, kp, kv = _servos(model, name)
         qpos0 = np.array([model.qpos0[model.joint(j).qposadr[0]] for j in joints])
@@ -168,7 +182,9 @@ class Figure:
             head_bodies=tuple(head_bodies),
             body_names=bodies,
             edges=edges,
-            sensor_names=sensor_columns(joints, contact),
+            sensor_names=sensor_columns(joints, contact, sites),
+            touch_bodies=tuple(touch_bodies),
+            sites=tuple(sites),
         )
 
 
@@ -202,8 +218,11 @@ def _check_planar_root(model: mujoco.MjModel, name: str) -> None:
         )
 
 
-def _with_contact_sensors(xml: str, bodies: Sequence[str]) -> str:
-    """The MJCF with a net-force contact sensor per body (kept if already there)."""
+def _with_sensors(xml: str, bodies: Sequence[str], sites: Sequence[str]) -> str:
+    """The MJCF with a net-force contact sensor per body and a position sensor per site.
+
+    Sensors already there (by name) are kept.
+    """
     root = ET.fromstring(xml)
     section = root.find("sensor")
     if section is None:
@@ -214,6 +233,10 @@ def _with_contact_sensors(xml: str, bodies: Sequence[str]) -> str:
         if sensor not in present:
             attrs = {"name": sensor, "body1": body, "data": "force", "reduce": "netforce"}
             ET.SubElement(section, "contact", attrs)
+    for site in sites:
+        sensor = site_sensor_name(site)
+        if sensor not in present:
+            ET.SubElement(section, "framepos", {"name": sensor, "objtype": "site", "objname": site})
     ET.indent(root)
     return ET.tostring(root, encoding="unicode") + "\n"
 

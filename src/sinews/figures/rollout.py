@@ -12,6 +12,7 @@ the batch size or thread count, provided the controller's rows are independent
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
@@ -29,9 +30,17 @@ if TYPE_CHECKING:
 
     from sinews.control.protocol import Controller
 
-__all__ = ["RolloutResult", "rollout"]
+__all__ = ["Observer", "RolloutResult", "rollout"]
 
 FloatArray = npt.NDArray[np.float64]
+
+Observer = Callable[[float, FloatArray, FloatArray], None]
+"""``observer(t, sensors, targets)``: a look at every control tick, then at the end.
+
+Called after the controller answered at each tick with the (P, S) sensors it
+saw and its (P, n_act) targets, and once more after the last tick with the
+final sensors and the last targets. The arrays are reused: copy what you keep.
+"""
 
 
 @dataclass(frozen=True, eq=False)
@@ -104,6 +113,7 @@ def rollout(
     record_hz: float = 60.0,
     nthread: int | None = None,
     max_speed: float = 1000.0,
+    observer: Observer | None = None,
 ) -> RolloutResult:
     """Simulate ``n_individuals`` copies of ``figure``, each driven by its row of ``controller``.
 
@@ -118,6 +128,8 @@ def rollout(
         record_hz: frames per second of the recording.
         nthread: C threads for the batch (default: every CPU).
         max_speed: a generalised velocity above this (m/s or rad/s) fails the row.
+        observer: optional per-tick look at the sensors and targets (see `Observer`),
+            e.g. to accumulate fitness terms; it does not change the motion.
 
     Returns:
         The per-individual results.
@@ -135,7 +147,7 @@ def rollout(
     model = figure.model(timestep=1.0 / physics_hz)
     threads = nthread or os.cpu_count() or 1
     sim = Population(model, n_individuals, threads, max_speed)
-    reader = SensorReader(model, figure.joints, figure.contact_bodies)
+    reader = SensorReader(model, figure.joints, figure.contact_bodies, figure.sites)
     sensors = np.empty((n_individuals, reader.n_columns))
     initial_x = sim.qpos[:, 0].copy()
     total = n_ticks * substeps
@@ -156,6 +168,8 @@ def rollout(
                 f"controller answered shape {targets.shape}, "
                 f"expected {(n_individuals, figure.n_actuators)}"
             )
+        if observer is not None:
+            observer(tick / control_hz, sensors, targets)
         sim.set_targets(targets)
         end = step + substeps
         while next_frame != -1 and next_frame <= end:
@@ -165,6 +179,9 @@ def rollout(
             next_frame = next(pending, -1)
         sim.step(end - step)
         step = end
+    if observer is not None and n_ticks:
+        reader.read(sensors, sim.time, sim.qpos, sim.qvel, sim.sensordata)
+        observer(n_ticks / control_hz, sensors, targets)
     result = RolloutResult(
         figure=figure,
         initial_x=initial_x,

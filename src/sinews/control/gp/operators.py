@@ -1,0 +1,175 @@
+"""Making and varying programs: ramped half-and-half, subtree crossover and mutation, limits.
+
+Every random choice is drawn from the generator passed in, in a fixed order,
+so the same generator state gives the same programs.
+
+Koza's choices (the paper follows his book): initial trees of depth 2 to 6,
+half grown and half full; crossover points are function nodes 90% of the
+time; children deeper than 17 are not allowed. Here a child over the `Limits`
+is replaced by a copy of its parent (DEAP's ``staticLimit``), which the
+strategy applies (see `sinews.evolve.gp`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from sinews.control.gp.primitives import ARITY, CONST, VAR, GPError, PrimitiveSet
+from sinews.control.gp.tree import Program, Tree, program_depth, program_size
+
+__all__ = [
+    "Limits",
+    "crossover",
+    "mutate",
+    "pick_point",
+    "ramped_half_and_half",
+    "random_tree",
+]
+
+INTERNAL_PROBABILITY = 0.9
+"""Koza's chance that a crossover or mutation point is a function node."""
+
+
+@dataclass(frozen=True)
+class Limits:
+    """Bloat limits on every tree of a program (the list root is not counted).
+
+    Attributes:
+        max_depth: deepest allowed tree (a lone terminal has depth 0).
+        max_size: most nodes allowed in one tree.
+    """
+
+    max_depth: int = 17
+    max_size: int = 200
+
+    def __post_init__(self) -> None:
+        if self.max_depth < 1 or self.max_size < 3:
+            raise GPError("limits need max_depth >= 1 and max_size >= 3")
+
+    def admits(self, program: Program) -> bool:
+        """True if every tree is within both limits."""
+        return program_size(program) <= self.max_size and program_depth(program) <= self.max_depth
+
+
+def random_tree(pset: PrimitiveSet, rng: np.random.Generator, depth: int, *, full: bool) -> Tree:
+    """A random tree of at most ``depth`` (exactly ``depth`` if ``full``).
+
+    The root is a function (when ``depth`` > 0). Below it, "full" places
+    functions down to ``depth``; "grow" picks uniformly among the functions
+    and the terminals (all named terminals plus one for a random constant).
+    The nodes at ``depth`` are terminals.
+
+    Args:
+        pset: the primitives.
+        rng: the generator.
+        depth: the depth limit (>= 0).
+        full: "full" (True) or "grow" (False).
+    """
+    functions = pset.function_codes
+    n_functions, n_leaves = len(functions), pset.n_terminals + 1
+    codes: list[int] = []
+    consts: list[float] = []
+    slots = [0]  # depths of the nodes still to place, the next one last
+    while slots:
+        level = slots.pop()
+        if level < depth and (full or level == 0):
+            pick = int(rng.integers(n_functions))
+        elif level < depth:
+            pick = int(rng.integers(n_functions + n_leaves))
+        else:
+            pick = n_functions + int(rng.integers(n_leaves))
+        if pick < n_functions:
+            code = int(functions[pick])
+            codes.append(code)
+            slots.extend([level + 1] * int(ARITY[code]))
+        elif pick - n_functions == pset.n_terminals:
+            codes.append(CONST)
+            consts.append(float(pset.erc(rng)))
+        else:
+            codes.append(VAR + pick - n_functions)
+    return Tree(np.array(codes), np.array(consts))
+
+
+def ramped_half_and_half(
+    pset: PrimitiveSet,
+    rng: np.random.Generator,
+    *,
+    n_programs: int,
+    n_trees: int,
+    min_depth: int = 2,
+    max_depth: int = 6,
+    retries: int = 20,
+) -> list[Program]:
+    """Koza's initial population: depths ramped over the programs, half full, half grown.
+
+    Program ``i`` gets depth ``min_depth + i mod (max_depth - min_depth + 1)``
+    and is full on even passes over the depths, grown on odd ones; all its
+    trees share that depth and method. A program equal to an earlier one is
+    drawn again (up to ``retries`` times), so the population starts diverse.
+
+    Returns:
+        ``n_programs`` programs of ``n_trees`` trees each.
+    """
+    if not 0 <= min_depth <= max_depth or n_programs < 0 or n_trees < 1:
+        raise GPError("need 0 <= min_depth <= max_depth, n_programs >= 0 and n_trees >= 1")
+    n_depths = max_depth - min_depth + 1
+    seen: set[Program] = set()
+    programs: list[Program] = []
+    for i in range(n_programs):
+        depth, full = min_depth + i % n_depths, (i // n_depths) % 2 == 0
+        for _ in range(retries + 1):
+            program = tuple(random_tree(pset, rng, depth, full=full) for _ in range(n_trees))
+            if program not in seen:
+                break
+        seen.add(program)
+        programs.append(program)
+    return programs
+
+
+def pick_point(tree: Tree, rng: np.random.Generator) -> int:
+    """A node of ``tree``: a function node with probability 0.9 (if any), else a leaf."""
+    internal = tree.internal
+    if len(internal) and rng.random() < INTERNAL_PROBABILITY:
+        return int(internal[rng.integers(len(internal))])
+    leaves = np.setdiff1d(np.arange(len(tree)), internal, assume_unique=True)
+    return int(leaves[rng.integers(len(leaves))])
+
+
+def crossover(
+    a: Program, b: Program, rng: np.random.Generator, *, any_slot: bool = False
+) -> tuple[Program, Program]:
+    """Swap a random subtree of one of ``a``'s trees with one of ``b``'s.
+
+    By default both subtrees come from the same slot (the same joint's tree),
+    as the paper's list-rooted programs imply; with ``any_slot`` the slots
+    are drawn independently. The list root and the number of trees never change.
+
+    Returns:
+        The child that is ``a`` with ``b``'s subtree, and the one that is
+        ``b`` with ``a``'s.
+    """
+    if len(a) != len(b):
+        raise GPError("crossover needs programs with the same number of trees")
+    slot_a = int(rng.integers(len(a)))
+    slot_b = int(rng.integers(len(b))) if any_slot else slot_a
+    tree_a, tree_b = a[slot_a], b[slot_b]
+    i, j = pick_point(tree_a, rng), pick_point(tree_b, rng)
+    child_a = tree_a.replace(i, tree_b.subtree(j))
+    child_b = tree_b.replace(j, tree_a.subtree(i))
+    return _with(a, slot_a, child_a), _with(b, slot_b, child_b)
+
+
+def mutate(
+    program: Program, pset: PrimitiveSet, rng: np.random.Generator, *, depth: int = 4
+) -> Program:
+    """Replace a random subtree of a random tree with a new grown tree of depth <= ``depth``."""
+    slot = int(rng.integers(len(program)))
+    tree = program[slot]
+    point = pick_point(tree, rng)
+    return _with(program, slot, tree.replace(point, random_tree(pset, rng, depth, full=False)))
+
+
+def _with(program: Program, slot: int, tree: Tree) -> Program:
+    return (*program[:slot], tree, *program[slot + 1 :])

@@ -1,0 +1,371 @@
+"""`GPStrategy`: genetic programming (seed 003) with the same ask/tell cycle as `Strategy`.
+
+Genomes are programs (`sinews.control.gp.Program`: one tree per driven
+joint), not fixed-size float vectors, so this is its own class rather than a
+`Strategy` subclass; it keeps that base's contract: ``ask()`` returns the next
+population and records each child's parents, ``tell(fitness)`` (higher is
+better, NaN = worst) lets it breed the following one, calling them out of turn
+raises `StrategyError`, and `to_bytes` is an exact checkpoint (programs as
+S-expressions, the generator's ``bit_generator.state``).
+
+Breeding follows Koza's generational scheme as the paper used it: generation
+0 is ramped half-and-half; each later one is ``crossover_rate`` crossover
+children (made in pairs), ``mutation_rate`` subtree mutants (0 by default, "we
+did not use mutation") and the rest reproduced copies, parents chosen by
+tournament or fitness-proportionately. A child over the `Limits` is replaced
+by its first parent (``staticLimit``). ``elites`` best individuals may be
+copied first (0 in the paper).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+from dataclasses import dataclass
+from typing import Any, Literal
+
+import numpy as np
+import numpy.typing as npt
+
+from sinews.control.gp import (
+    GENOME_CODEC,
+    GPError,
+    Limits,
+    PrimitiveSet,
+    Program,
+    crossover,
+    decode_program,
+    encode_program,
+    format_program,
+    mutate,
+    parse_program,
+    ramped_half_and_half,
+)
+from sinews.evolve._state import decode_array, decode_rng, encode_array, encode_rng
+from sinews.evolve.errors import StrategyError
+
+__all__ = ["GPStrategy", "GPVariation", "proportionate", "tournament_select"]
+
+FloatArray = npt.NDArray[np.float64]
+IntArray = npt.NDArray[np.int64]
+Selection = Literal["tournament", "proportionate"]
+
+
+@dataclass(frozen=True)
+class GPVariation:
+    """How a GP generation is bred.
+
+    Attributes:
+        crossover_rate: share of children made by subtree crossover (paper: 0.9).
+        mutation_rate: share made by subtree mutation (paper: 0); the rest are copies.
+        selection: ``"tournament"`` or ``"proportionate"`` (Koza's adjusted fitness).
+        tournament_size: contestants per tournament.
+        any_slot: crossover may swap subtrees between different joints' trees.
+        elites: best individuals copied unchanged before breeding.
+        max_depth: deepest tree allowed in a child (Koza: 17).
+        max_size: most nodes allowed in a child's tree.
+        init_depth: (min, max) depth of the ramped initial trees (Koza: 2 to 6).
+        mutation_depth: depth limit of a mutation's new subtree.
+    """
+
+    crossover_rate: float = 0.9
+    mutation_rate: float = 0.0
+    selection: Selection = "tournament"
+    tournament_size: int = 7
+    any_slot: bool = False
+    elites: int = 0
+    max_depth: int = 17
+    max_size: int = 200
+    init_depth: tuple[int, int] = (2, 6)
+    mutation_depth: int = 4
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "init_depth", tuple(int(d) for d in self.init_depth))
+        rates = (self.crossover_rate, self.mutation_rate)
+        if min(rates) < 0 or sum(rates) > 1:
+            raise StrategyError("crossover_rate and mutation_rate must be >= 0 and sum to <= 1")
+        if self.selection not in ("tournament", "proportionate"):
+            raise StrategyError(
+                f"selection must be tournament or proportionate, got {self.selection!r}"
+            )
+        if self.tournament_size < 1 or self.elites < 0 or self.mutation_depth < 0:
+            raise StrategyError("tournament_size must be >= 1, elites and mutation_depth >= 0")
+        low, high = self.init_depth
+        if not 0 <= low <= high <= self.max_depth:
+            raise StrategyError("init_depth must be (min, max) with 0 <= min <= max <= max_depth")
+        try:
+            Limits(max_depth=self.max_depth, max_size=self.max_size)
+        except GPError as exc:
+            raise StrategyError(str(exc)) from None
+
+    @property
+    def limits(self) -> Limits:
+        """The bloat limits children must meet."""
+        return Limits(max_depth=self.max_depth, max_size=self.max_size)
+
+
+def tournament_select(
+    fitness: FloatArray, count: int, *, size: int, rng: np.random.Generator
+) -> IntArray:
+    """``count`` winners of tournaments of ``size`` random contestants (ties: lowest index)."""
+    contestants = rng.integers(0, len(fitness), size=(count, size))
+    values = fitness[contestants]
+    winners = values == values.max(axis=1, keepdims=True)
+    return np.where(winners, contestants, len(fitness)).min(axis=1).astype(np.int64)
+
+
+def proportionate(fitness: FloatArray, count: int, *, rng: np.random.Generator) -> IntArray:
+    """Fitness-proportionate (roulette) choice on Koza's adjusted fitness.
+
+    With higher-is-better fitness f, the standardized fitness is ``best − f``
+    (0 for the best) and the adjusted ``1 / (1 + standardized)``; a failed
+    individual (−inf) has weight 0. If all failed, the choice is uniform.
+    """
+    finite = np.isfinite(fitness)
+    if not finite.any():
+        return rng.integers(0, len(fitness), size=count).astype(np.int64)
+    standardized = fitness[finite].max() - np.where(finite, fitness, 0.0)
+    adjusted = np.where(finite, 1.0 / (1.0 + standardized), 0.0)
+    return rng.choice(len(fitness), size=count, p=adjusted / adjusted.sum()).astype(np.int64)
+
+
+class GPStrategy:
+    """Ask for a population of programs, tell it how they did, ask for the next one.
+
+    Args:
+        population_size: P (at least 2).
+        pset: the primitives of this run.
+        n_trees: trees per program J (driven joints).
+        rng: the strategy's own generator; it makes every random choice.
+        variation: how generations are bred.
+
+    Attributes:
+        name: ``"gp"`` in checkpoints.
+        codec: the genome codec of `encode`.
+    """
+
+    name = "gp"
+    codec = GENOME_CODEC
+
+    def __init__(
+        self,
+        *,
+        population_size: int,
+        pset: PrimitiveSet,
+        n_trees: int,
+        rng: np.random.Generator,
+        variation: GPVariation | None = None,
+    ) -> None:
+        if population_size < 2 or n_trees < 1:
+            raise StrategyError("need population_size >= 2 and n_trees >= 1")
+        self.population_size = int(population_size)
+        self.pset = pset
+        self.n_trees = int(n_trees)
+        self.rng = rng
+        self.variation = variation or GPVariation()
+        if self.variation.elites >= self.population_size:
+            raise StrategyError(f"elites must be below the population size {population_size}")
+        self._generation = -1
+        self._population: list[Program] | None = None
+        self._parents: IntArray | None = None
+        self._fitness: FloatArray | None = None
+        self._told = False
+
+    # -- the cycle ---------------------------------------------------------------
+
+    @property
+    def generation(self) -> int:
+        """Number of the last population asked for (-1 before the first ``ask``)."""
+        return self._generation
+
+    @property
+    def population(self) -> tuple[Program, ...]:
+        """The last population asked for."""
+        if self._population is None:
+            raise StrategyError("no population yet: call ask() first")
+        return tuple(self._population)
+
+    @property
+    def parents(self) -> IntArray:
+        """(P, 2) each child's parents in the previous population, -1 for none (read-only).
+
+        Generation 0 has none; copies, mutants and children replaced by a
+        parent for breaking the limits have one; crossover children have two,
+        the one whose tree they were built on first.
+        """
+        if self._parents is None:
+            raise StrategyError("no population yet: call ask() first")
+        view = self._parents.view()
+        view.flags.writeable = False
+        return view
+
+    @property
+    def awaiting_tell(self) -> bool:
+        """True between an ``ask`` and its ``tell``."""
+        return self._population is not None and not self._told
+
+    def ask(self) -> list[Program]:
+        """The next population of P programs (a new list the caller may keep).
+
+        Raises:
+            StrategyError: the previous population has not been told yet.
+        """
+        if self.awaiting_tell:
+            raise StrategyError("ask() called twice: tell() the last population first")
+        if self._population is None:
+            low, high = self.variation.init_depth
+            population = ramped_half_and_half(
+                self.pset, self.rng, n_programs=self.population_size, n_trees=self.n_trees,
+                min_depth=low, max_depth=high,
+            )  # fmt: skip
+            parents = np.full((self.population_size, 2), -1, dtype=np.int64)
+        else:
+            population, parents = self._breed()
+        self._population, self._parents = population, parents
+        self._generation += 1
+        self._told = False
+        return list(population)
+
+    def tell(self, fitness: npt.ArrayLike) -> None:
+        """Judge the last population.
+
+        Args:
+            fitness: (P,) higher is better; NaN or -inf is the worst.
+
+        Raises:
+            StrategyError: out of turn, wrong shape, not numbers, or +inf.
+        """
+        if self._population is None:
+            raise StrategyError("tell() before ask(): there is no population to judge")
+        if self._told:
+            raise StrategyError("tell() called twice for one population: ask() first")
+        self._fitness = self._checked(fitness)
+        self._told = True
+
+    def _checked(self, fitness: npt.ArrayLike) -> FloatArray:
+        try:
+            values = np.array(fitness, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise StrategyError("fitness must be numbers") from None
+        if values.shape != (self.population_size,):
+            raise StrategyError(
+                f"tell() needs one fitness per individual ({self.population_size}), "
+                f"got shape {values.shape}"
+            )
+        if np.any(values == np.inf):
+            raise StrategyError("fitness must not be +inf")
+        return np.where(np.isnan(values), -np.inf, values)
+
+    def _select(self, count: int) -> IntArray:
+        assert self._fitness is not None
+        v = self.variation
+        if v.selection == "tournament":
+            return tournament_select(self._fitness, count, size=v.tournament_size, rng=self.rng)
+        return proportionate(self._fitness, count, rng=self.rng)
+
+    def _breed(self) -> tuple[list[Program], IntArray]:
+        assert self._population is not None and self._fitness is not None
+        old, v, size = self._population, self.variation, self.population_size
+        n_cross = round(v.crossover_rate * (size - v.elites))
+        n_mutate = round(v.mutation_rate * (size - v.elites))
+        elites = np.argsort(-self._fitness, kind="stable")[: v.elites]
+        children: list[Program] = [old[i] for i in elites]
+        parents = [(int(i), -1) for i in elites]
+        while len(children) < v.elites + n_cross:
+            i, j = (int(k) for k in self._select(2))
+            pair = crossover(old[i], old[j], self.rng, any_slot=v.any_slot)
+            for child, (first, second) in zip(pair, ((i, j), (j, i)), strict=True):
+                if len(children) < v.elites + n_cross:
+                    admitted = v.limits.admits(child)
+                    children.append(child if admitted else old[first])
+                    parents.append((first, second if admitted else -1))
+        for i in self._select(n_mutate).tolist():
+            child = mutate(old[i], self.pset, self.rng, depth=v.mutation_depth)
+            children.append(child if v.limits.admits(child) else old[i])
+            parents.append((i, -1))
+        for i in self._select(size - len(children)).tolist():
+            children.append(old[i])
+            parents.append((i, -1))
+        return children, np.array(parents, dtype=np.int64)
+
+    # -- genomes and checkpoints ------------------------------------------------
+
+    def encode(self, program: Program) -> bytes:
+        """One program as `codec` bytes (for a run store)."""
+        return encode_program(program, self.pset)
+
+    def decode(self, data: bytes) -> Program:
+        """A program from `encode` bytes; `StrategyError` if it is not one of this run's."""
+        try:
+            return decode_program(data, self.pset)
+        except GPError as exc:
+            raise StrategyError(f"not a program of this run: {exc}") from None
+
+    def to_state(self) -> dict[str, Any]:
+        """The whole state as a JSON-safe dict (see `from_state`)."""
+        population = self._population
+        state: dict[str, Any] = {
+            "strategy": self.name,
+            "population_size": self.population_size,
+            "n_trees": self.n_trees,
+            "pset": self.pset.to_dict(),
+            "options": dataclasses.asdict(self.variation),
+            "rng": encode_rng(self.rng),
+            "generation": self._generation,
+            "told": self._told,
+            "population": None
+            if population is None
+            else [format_program(p, self.pset) for p in population],
+            "parents": None if self._parents is None else encode_array(self._parents),
+        }
+        if self._told:
+            assert self._fitness is not None
+            state["fitness"] = encode_array(self._fitness)
+        return state
+
+    def to_bytes(self) -> bytes:
+        """The checkpoint: `to_state` as UTF-8 JSON."""
+        return json.dumps(self.to_state(), separators=(",", ":")).encode()
+
+    @classmethod
+    def from_state(cls, state: object) -> GPStrategy:
+        """Rebuild a strategy exactly as it was saved.
+
+        Raises:
+            StrategyError: not a GP checkpoint, or a malformed one.
+        """
+        if not isinstance(state, dict) or state.get("strategy") != cls.name:
+            raise StrategyError("not a GP strategy checkpoint")
+        try:
+            pset = PrimitiveSet.from_dict(state["pset"])
+            strategy = cls(
+                population_size=int(state["population_size"]),
+                pset=pset,
+                n_trees=int(state["n_trees"]),
+                rng=decode_rng(state["rng"]),
+                variation=GPVariation(**state["options"]),
+            )
+            strategy._generation = int(state["generation"])
+            if state["population"] is not None:
+                population = [parse_program(text, pset) for text in state["population"]]
+                parents = decode_array(state["parents"], "parents")
+                if len(population) != strategy.population_size or parents.shape != (
+                    len(population),
+                    2,
+                ):
+                    raise StrategyError("checkpoint population does not match the strategy's size")
+                strategy._population, strategy._parents = population, parents
+            if state["told"]:
+                strategy.tell(decode_array(state["fitness"], "fitness"))
+        except (KeyError, TypeError, ValueError, GPError):
+            raise StrategyError("malformed GP strategy checkpoint") from None
+        return strategy
+
+    @classmethod
+    def from_bytes(cls, data: bytes) -> GPStrategy:
+        """Rebuild a strategy from `to_bytes` output."""
+        try:
+            state = json.loads(data)
+        except (UnicodeDecodeError, json.JSONDecodeError):
+            raise StrategyError("not a strategy checkpoint (not JSON)") from None
+        return cls.from_state(state)

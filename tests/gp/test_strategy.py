@@ -1,0 +1,168 @@
+"""GPStrategy: the ask/tell cycle and its guards, breeding, lineage, selection, checkpoints."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from gp_helpers import make_pset, seeds
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from sinews.control.gp import program_depth, program_size
+from sinews.evolve import StrategyError
+from sinews.evolve.gp import GPStrategy, GPVariation, proportionate, tournament_select
+
+
+def _strategy(seed: int = 0, size: int = 20, **options: object) -> GPStrategy:
+    return GPStrategy(
+        population_size=size,
+        pset=make_pset(),
+        n_trees=3,
+        rng=np.random.default_rng(seed),
+        variation=GPVariation(**options),  # type: ignore[arg-type]
+    )
+
+
+def _score(programs: list) -> np.ndarray:
+    """A deterministic fitness: smaller programs are better."""
+    return -np.array([sum(len(t) for t in p) for p in programs], dtype=float)
+
+
+def test_out_of_turn_calls_are_refused() -> None:
+    gp = _strategy()
+    with pytest.raises(StrategyError):
+        gp.tell(np.zeros(20))
+    with pytest.raises(StrategyError):
+        _ = gp.population
+    programs = gp.ask()
+    assert gp.awaiting_tell and gp.generation == 0
+    with pytest.raises(StrategyError):
+        gp.ask()
+    for bad in (np.zeros(19), ["x"] * 20, np.full(20, np.inf)):
+        with pytest.raises(StrategyError):
+            gp.tell(bad)
+    gp.tell(_score(programs))
+    with pytest.raises(StrategyError):
+        gp.tell(_score(programs))
+    assert (gp.parents == -1).all()
+    with pytest.raises(ValueError):
+        gp.parents[0, 0] = 3
+
+
+@pytest.mark.parametrize(
+    "options",
+    [
+        {"crossover_rate": 0.9, "mutation_rate": 0.2},
+        {"selection": "roulette"},
+        {"tournament_size": 0},
+        {"init_depth": (4, 2)},
+        {"max_size": 1},
+    ],
+)
+def test_bad_options_are_refused(options: dict[str, object]) -> None:
+    with pytest.raises(StrategyError):
+        _strategy(**options)
+    with pytest.raises(StrategyError):
+        _strategy(size=4, elites=4)
+
+
+@settings(max_examples=12, deadline=None)
+@given(
+    seed=seeds,
+    selection=st.sampled_from(["tournament", "proportionate"]),
+    mutation=st.sampled_from([0.0, 0.3]),
+    any_slot=st.booleans(),
+)
+def test_children_keep_the_list_root_the_limits_and_their_lineage(
+    seed: int, selection: str, mutation: float, any_slot: bool
+) -> None:
+    gp = _strategy(
+        seed, crossover_rate=0.9 - mutation, mutation_rate=mutation, selection=selection,
+        any_slot=any_slot, max_depth=6, max_size=25, elites=1,
+    )  # fmt: skip
+    previous = gp.ask()
+    for _ in range(3):
+        gp.tell(_score(previous))
+        children = gp.ask()
+        parents = gp.parents
+        assert len(children) == 20 and parents.shape == (20, 2)
+        for child, (first, second) in zip(children, parents.tolist(), strict=True):
+            assert len(child) == 3
+            assert 0 <= first < 20 and -1 <= second < 20
+            if child not in previous:  # new material must meet the limits (copies may not)
+                assert program_depth(child) <= 6 and program_size(child) <= 25
+            if second == -1 and child != previous[first]:  # a mutant
+                assert mutation > 0
+        assert children[0] == previous[int(np.argmax(_score(previous)))]  # the elite
+        n_pairs = sum(1 for _, second in parents.tolist() if second >= 0)
+        assert n_pairs <= round((0.9 - mutation) * 19)
+        previous = children
+
+
+def test_a_child_over_the_limit_is_its_first_parent() -> None:
+    gp = _strategy(3, max_depth=2, init_depth=(2, 2), crossover_rate=1.0)
+    previous = gp.ask()
+    gp.tell(_score(previous))
+    children = gp.ask()
+    replaced = 0
+    for child, (first, second) in zip(children, gp.parents.tolist(), strict=True):
+        assert program_depth(child) <= 2
+        if second == -1:
+            assert child == previous[first]
+            replaced += 1
+    assert 0 < replaced < 20
+
+
+def test_selection_favours_the_fit_and_never_picks_the_failed() -> None:
+    rng = np.random.default_rng(0)
+    fitness = np.array([-3.0, -1.0, -np.inf, 0.0, -2.0])
+    picks = proportionate(fitness, 10_000, rng=rng)
+    counts = np.bincount(picks, minlength=5)
+    assert counts[2] == 0 and counts[3] > counts[1] > counts[4] > counts[0]
+    expected = 1 / (1 + np.array([3.0, 1.0, 0.0, 2.0]))
+    np.testing.assert_allclose(counts[[0, 1, 3, 4]] / 10_000, expected / expected.sum(), atol=0.02)
+    wins = np.bincount(tournament_select(fitness, 10_000, size=3, rng=rng), minlength=5)
+    assert wins[3] > wins[1] > wins[4] > wins[0] > wins[2]  # -inf wins only against itself
+    assert (tournament_select(np.zeros(4), 50, size=4, rng=rng) <= 3).all()
+    uniform = proportionate(np.full(4, -np.inf), 1000, rng=rng)
+    assert set(uniform.tolist()) == {0, 1, 2, 3}
+
+
+@pytest.mark.parametrize("told", [False, True])
+def test_a_checkpoint_resumes_bit_for_bit(told: bool) -> None:
+    gp = _strategy(5, mutation_rate=0.05, crossover_rate=0.85, selection="proportionate")
+    programs = gp.ask()
+    gp.tell(_score(programs))
+    programs = gp.ask()
+    if told:
+        gp.tell(_score(programs))
+    data = gp.to_bytes()
+    restored = GPStrategy.from_bytes(data)
+    assert restored.to_bytes() == data
+    assert restored.population == gp.population
+    np.testing.assert_array_equal(restored.parents, gp.parents)
+    for strategy in (gp, restored):
+        if not told:
+            strategy.tell(_score(programs))
+    for _ in range(2):
+        a, b = gp.ask(), restored.ask()
+        assert a == b
+        np.testing.assert_array_equal(gp.parents, restored.parents)
+        gp.tell(_score(a))
+        restored.tell(_score(b))
+    assert gp.to_bytes() == restored.to_bytes()
+
+
+def test_genomes_and_bad_checkpoints() -> None:
+    gp = _strategy()
+    program = gp.ask()[0]
+    assert gp.codec == "gp-sexpr/1"
+    assert gp.decode(gp.encode(program)) == program
+    with pytest.raises(StrategyError):
+        gp.decode(b"(list nope)")
+    state = json.loads(gp.to_bytes())
+    for broken in (b"not json", b"{}", json.dumps({**state, "population": ["(list"]}).encode()):
+        with pytest.raises(StrategyError):
+            GPStrategy.from_bytes(broken)

@@ -1,0 +1,152 @@
+"""Tasks: scenes, terminals and fitness terms, on hand-made motions."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+pytest.importorskip("mujoco")
+
+from sinews.control import HoldPose
+from sinews.figures import FigureError, rollout
+from sinews.figures.tasks import (
+    TASKS,
+    TERMS,
+    Task,
+    TaskMeter,
+    humanoid_reach,
+    luxo_hop,
+    luxo_limbo,
+    make_task,
+)
+
+
+@pytest.fixture(scope="module")
+def hop() -> Task:
+    return luxo_hop(1.5)
+
+
+def test_the_built_in_tasks_build() -> None:
+    for name in TASKS:
+        task = make_task(name)
+        assert next(iter(task.weights)) == "distance"
+        assert set(task.weights) <= set(TERMS)
+        assert len(task.actuators) == len(task.joints)
+        weights, offset = task.input_map()
+        assert weights.shape == (task.figure.n_sensors, len(task.terminals))
+        assert offset.shape == (len(task.terminals),)
+    limbo = luxo_limbo(0.25)
+    assert limbo.figure.touch_bodies == ("pole",)
+    assert {"fx_pole", "fz_pole"} <= set(limbo.figure.sensor_names)
+    assert limbo.weights["touch"] > limbo.weights["head"]
+    reach = humanoid_reach("nose")
+    assert reach.figure.sites == ("hand_r", "nose")
+    assert reach.goal.target == ("x_nose", "z_nose")
+    assert luxo_hop(-0.5).goal.target == (-0.5,)
+
+
+@pytest.mark.parametrize(
+    ("name", "options"),
+    [
+        ("luxo-hop", {"target": 0.2}),
+        ("luxo-hop", {"target": -2.5}),
+        ("luxo-limbo", {"pole_height": 0.0}),
+        ("luxo-limbo", {"pole_x": 2.0}),
+        ("humanoid-reach", {"target": "ear"}),
+        ("luxo-hop", {"bogus": 1}),
+        ("walk", {}),
+    ],
+)
+def test_bad_task_options_are_refused(name: str, options: dict[str, object]) -> None:
+    with pytest.raises(FigureError):
+        make_task(name, **options)
+
+
+def test_terminals_are_sensors_and_goal_relative_positions(hop: Task) -> None:
+    reach = humanoid_reach("nose")
+    for task in (hop, reach):
+        weights, offset = task.input_map()
+        sensors = np.random.default_rng(0).normal(size=(5, task.figure.n_sensors))
+        inputs = sensors @ weights + offset
+        column = task.figure.sensor_index
+        for v, name in enumerate(task.sensors):
+            np.testing.assert_array_equal(inputs[:, v], sensors[:, column(name)])
+    hop_inputs = sensors_for(hop, root_x=[0.25, 2.0]) @ hop.input_map()[0] + hop.input_map()[1]
+    np.testing.assert_allclose(hop_inputs[:, hop.terminals.index("gx")], [1.25, -0.5])
+    weights, offset = reach.input_map()
+    sensors = np.random.default_rng(1).normal(size=(3, reach.figure.n_sensors))
+    gz = (sensors @ weights + offset)[:, reach.terminals.index("gz")]
+    column = reach.figure.sensor_index
+    np.testing.assert_allclose(gz, sensors[:, column("z_nose")] - sensors[:, column("z_hand_r")])
+
+
+def sensors_for(task: Task, **columns: list[float]) -> np.ndarray:
+    """(P, S) zero sensors with some named columns set."""
+    n = len(next(iter(columns.values())))
+    sensors = np.zeros((n, task.figure.n_sensors))
+    for name, values in columns.items():
+        sensors[:, task.figure.sensor_index(name)] = values
+    return sensors
+
+
+def test_terms_of_a_hand_made_motion(hop: Task) -> None:
+    """Two lamps over 5 s at 10 observations/s: one arrives at 2 s then wobbles, one never moves."""
+    meter = TaskMeter(hop, 2)
+    targets = np.zeros((2, 3))
+    for k in range(51):
+        t = k / 10
+        x = min(t / 2, 1.0) * 1.5 + (0.01 * (-1) ** k if t > 2 else 0.0)
+        sensors = sensors_for(
+            hop,
+            time=[t, t],
+            root_x=[x, 0.0],
+            root_pitch=[1.2 if 1.0 <= t < 1.5 else 0.0, 0.0],  # fallen for 5 observations
+            fz_head=[3.0 if k < 10 else 0.0, 0.0],  # head down for 10
+            q_neck=[0.4, 0.0],
+        )
+        meter(t, sensors, targets)
+    terms = dict(zip(hop.weights, meter.terms().T, strict=True))
+    assert meter.observations == 51
+    np.testing.assert_allclose(terms["distance"], [-0.01, -1.5])
+    np.testing.assert_allclose(terms["early"], [1 - 2.0 / 5.0, 0.0])
+    np.testing.assert_allclose(terms["still"], [-(0.01 + 29 * 0.02), 0.0])  # 30 moves after arrival
+    np.testing.assert_allclose(terms["head"], [-10 / 51, 0.0])
+    np.testing.assert_allclose(terms["fallen"], [-5 / 51, 0.0])
+    np.testing.assert_allclose(terms["neutral"], [-0.4 / 3, 0.0])
+    np.testing.assert_allclose(terms["energy"], [0.0, 0.0])
+
+
+def test_terms_of_a_lamp_at_rest_and_the_observer_changes_nothing(hop: Task) -> None:
+    figure = hop.figure
+    meter = TaskMeter(hop, 2)
+    calls = []
+
+    def observe(t: float, sensors: np.ndarray, targets: np.ndarray) -> None:
+        calls.append(t)
+        meter(t, sensors, targets)
+
+    hold = HoldPose(figure.neutral)
+    seen = rollout(figure, hold, 2, 0.5, observer=observe, record=True)
+    unseen = rollout(figure, hold, 2, 0.5, record=True)
+    np.testing.assert_array_equal(seen.qpos, unseen.qpos)
+    assert len(calls) == 51 and calls[-1] == 0.5
+    terms = dict(zip(hop.weights, meter.terms().T, strict=True))
+    np.testing.assert_allclose(terms["distance"], -1.5, atol=1e-3)
+    for name in ("early", "still", "head", "fallen"):
+        np.testing.assert_array_equal(terms[name], 0.0)
+    assert (np.abs(terms["neutral"]) < 0.05).all() and (terms["energy"] <= 0).all()
+
+
+def test_the_limbo_pole_is_felt_only_when_touched() -> None:
+    low = luxo_limbo(0.33, pole_x=0.05, target=1.0)  # through the resting lamp's upper arm
+    high = luxo_limbo(0.9, target=1.0)
+    for task, touched in ((low, True), (high, False)):
+        meter = TaskMeter(task, 1)
+        rollout(task.figure, HoldPose(task.figure.neutral), 1, 0.3, observer=meter)
+        touch = meter.terms()[0, list(task.weights).index("touch")]
+        assert (touch < 0) == touched
+
+
+def test_the_meter_needs_observations(hop: Task) -> None:
+    with pytest.raises(FigureError):
+        TaskMeter(hop, 1).terms()
