@@ -2,31 +2,15 @@
 
 Gritz & Hahn rate a motion by a main goal ("the distance between the figure
 and the X at the end of the time allotment") plus style points. A `Task` holds
-all of that for one task, and `TaskMeter` measures every term for a whole
-population from the rollout's per-tick sensors (pass it as the rollout's
-``observer``). The engine has no special cases: a limbo pole is an extra body
-in the MJCF with a contact sensor, a hand is a site with a position sensor,
-a goal is a tracked point and a target, and goal-relative terminals such as
-``gx = X − root_x`` are an affine map of the sensor columns (`Task.input_map`).
+all of that for one task; `TaskMeter` (in `sinews.figures.terms`) measures
+every term for a whole population from the rollout's per-tick sensors. The
+engine has no special cases: a limbo pole is an extra body in the MJCF with a
+contact sensor, a hand is a site with a position sensor, a goal is a tracked
+point and a target, and goal-relative terminals such as ``gx = X − root_x``
+are an affine map of the sensor columns (`Task.input_map`).
 
-Terms (`TERMS`), each **higher is better** (penalties are ≤ 0), as
-`sinews.evolve.fitness` expects:
-
-- ``distance`` (the main goal): minus the tracked point's distance to the
-  target at the end, m.
-- ``early``: 1 − (time of first arrival within ``goal.radius``) / duration;
-  0 if it never arrives. "Bonus for completing the motion early."
-- ``still``: minus the path length of the tracked point after it first
-  arrived, m. "Penalty for excess movement after the goal was met."
-- ``head``: minus the fraction of ticks with any contact on a head body.
-- ``fallen``: minus the fraction of ticks the root is tilted beyond
-  ``max_tilt`` or lower than ``min_height`` ("falling over").
-- ``neutral``: minus the mean |angle − neutral| of the driven joints at the
-  end, rad. "Bonus for ending with joints at neutral angles."
-- ``energy``: minus the work of the servos, Σ |τ · q̇| Δt over the ticks, J
-  (τ from the PD law and each servo's torque limit); off in the built-ins.
-- ``touch``: minus the fraction of ticks with contact on a touch body (the
-  limbo pole).
+The terms (`sinews.figures.terms.TERMS`) are higher-is-better, as
+`sinews.evolve.fitness` expects; a task weighs them.
 """
 
 from __future__ import annotations
@@ -44,6 +28,7 @@ from sinews.figures.figure import Figure, FigureError
 from sinews.figures.humanoid import humanoid
 from sinews.figures.luxo import luxo
 from sinews.figures.mjcf import fmt
+from sinews.figures.terms import TERMS, TaskMeter
 
 __all__ = [
     "TASKS",
@@ -58,9 +43,6 @@ __all__ = [
 ]
 
 FloatArray = npt.NDArray[np.float64]
-
-TERMS = ("distance", "early", "still", "head", "fallen", "neutral", "energy", "touch")
-"""Every fitness term a task can weigh; ``distance`` is always the main goal."""
 
 
 @dataclass(frozen=True)
@@ -160,107 +142,6 @@ class Task:
             else:
                 offset[first + axis] = float(target)
         return weights, offset
-
-
-class TaskMeter:
-    """Measures a task's terms for P individuals from a rollout's observations.
-
-    Pass it as ``rollout(..., observer=meter)``; then `terms` gives the
-    (P, K) term values in the order of ``task.weights``.
-
-    Args:
-        task: the task.
-        n_individuals: P.
-    """
-
-    def __init__(self, task: Task, n_individuals: int) -> None:
-        figure = task.figure
-        index = figure.sensor_index
-        self.task = task
-        self._tracked = [index(c) for c in task.goal.tracked]
-        target = task.goal.target
-        self._moving = np.array([isinstance(t, str) for t in target])
-        self._goal_column = [index(t) if isinstance(t, str) else 0 for t in target]
-        self._goal_fixed = np.array([0.0 if isinstance(t, str) else float(t) for t in target])
-        self._head = _force_columns(figure, figure.head_bodies)
-        self._touch = _force_columns(figure, figure.touch_bodies)
-        self._root = index("root_z"), index("root_pitch")
-        self._q = [index(f"q_{j}") for j in figure.joints]
-        self._dq = [index(f"dq_{j}") for j in figure.joints]
-        self._driven = task.actuators
-        self._torque = np.abs(figure.model().actuator_forcerange).max(axis=1)
-        n = n_individuals
-        self._count = 0
-        self._last_t = 0.0
-        self._arrival = np.full(n, np.inf)
-        self._path = np.zeros(n)
-        self._previous = np.zeros((n, len(self._tracked)))
-        self._distance = np.zeros(n)
-        self._head_ticks = np.zeros(n)
-        self._fallen_ticks = np.zeros(n)
-        self._touch_ticks = np.zeros(n)
-        self._energy = np.zeros(n)
-        self._power = np.zeros(n)
-        self._neutral = np.zeros(n)
-
-    def __call__(self, t: float, sensors: FloatArray, targets: FloatArray) -> None:
-        """Take one observation (the rollout's `Observer` signature)."""
-        point = sensors[:, self._tracked]
-        goal = np.where(self._moving, sensors[:, self._goal_column], self._goal_fixed)
-        self._distance = np.linalg.norm(point - goal, axis=1)
-        arrived = np.isfinite(self._arrival)
-        self._path += np.where(arrived, np.linalg.norm(point - self._previous, axis=1), 0.0)
-        self._arrival = np.where(
-            ~arrived & (self._distance <= self.task.goal.radius), t, self._arrival
-        )
-        self._previous = point
-        self._head_ticks += _touching(sensors, self._head)
-        self._touch_ticks += _touching(sensors, self._touch)
-        z, pitch = sensors[:, self._root[0]], sensors[:, self._root[1]]
-        self._fallen_ticks += (np.abs(pitch) > self.task.max_tilt) | (z < self.task.min_height)
-        q, dq = sensors[:, self._q], sensors[:, self._dq]
-        self._energy += self._power * (t - self._last_t)  # power held since the last tick
-        figure = self.task.figure
-        torque = np.clip(figure.kp * (targets - q) - figure.kv * dq, -self._torque, self._torque)
-        self._power = np.abs(torque * dq).sum(axis=1)
-        neutral = self.task.figure.neutral[self._driven]
-        self._neutral = np.abs(q[:, self._driven] - neutral).mean(axis=1)
-        self._count += 1
-        self._last_t = t
-
-    @property
-    def observations(self) -> int:
-        """How many observations were taken."""
-        return self._count
-
-    def terms(self) -> FloatArray:
-        """(P, K) the term values (higher is better), columns in ``task.weights`` order."""
-        if self._count == 0:
-            raise FigureError("the meter has observed nothing: pass it as the rollout's observer")
-        n = self._count
-        duration = self._last_t if self._last_t > 0 else 1.0
-        early = np.where(np.isfinite(self._arrival), 1.0 - self._arrival / duration, 0.0)
-        values = {
-            "distance": -self._distance,
-            "early": early,
-            "still": -self._path,
-            "head": -self._head_ticks / n,
-            "fallen": -self._fallen_ticks / n,
-            "neutral": -self._neutral,
-            "energy": -self._energy,
-            "touch": -self._touch_ticks / n,
-        }
-        return np.column_stack([values[name] for name in self.task.weights])
-
-
-def _force_columns(figure: Figure, bodies: tuple[str, ...]) -> list[int]:
-    return [figure.sensor_index(f"f{axis}_{body}") for body in bodies for axis in "xz"]
-
-
-def _touching(sensors: FloatArray, columns: list[int]) -> npt.NDArray[np.bool_]:
-    if not columns:
-        return np.zeros(len(sensors), dtype=bool)
-    return (sensors[:, columns] != 0.0).any(axis=1)
 
 
 # -- the built-in tasks --------------------------------------------------------
