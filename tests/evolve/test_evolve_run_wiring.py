@@ -74,7 +74,8 @@ def test_options_override_the_run_file_which_overrides_defaults(tmp_path: Path) 
         ({"phase_in": "soon"}, "START:FULL"),
         ({"phase_in": "9:3"}, "start <= full"),
         ({"population": 1}, "population must be at least 2"),
-        ({"seconds": -1.0}, "seconds must be positive"),
+        ({"seconds": -1.0}, "seconds must be a positive number"),
+        ({"seconds": "long"}, "seconds must be a positive number"),
     ],
 )
 def test_bad_settings_are_one_line_errors(options: dict[str, object], message: str) -> None:

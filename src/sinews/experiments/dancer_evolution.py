@@ -90,9 +90,11 @@ def dancer_config(
     if not extra["song"]:
         raise SinewsError("give a song: --song FILE or --song demo:groove")
     seconds = extra["seconds"]
-    if seconds is not None and not float(seconds) > 0:
-        raise SinewsError(f"seconds must be positive, got {seconds}")
-    return config, str(extra["song"]), None if seconds is None else float(seconds)
+    if seconds is not None:
+        if isinstance(seconds, bool) or not isinstance(seconds, int | float) or not seconds > 0:
+            raise SinewsError(f"seconds must be a positive number, got {seconds!r}")
+        seconds = float(seconds)
+    return config, str(extra["song"]), seconds
 
 
 def song_path(song: str) -> Path:
