@@ -130,24 +130,31 @@ def dancers(
         str | None,
         typer.Option(help="Song file, or demo:groove / demo:sway (bundled demo songs)."),
     ] = None,
-    population: Annotated[int | None, typer.Option(help="Dancers per generation [16].")] = None,
-    generations: Annotated[int | None, typer.Option(help="Generations to run [20].")] = None,
-    seed: Annotated[int | None, typer.Option(help="Run seed [0].")] = None,
+    population: Annotated[
+        int | None, typer.Option(help="Dancers per generation (default 16).")
+    ] = None,
+    generations: Annotated[
+        int | None, typer.Option(help="Generations to run (default 20).")
+    ] = None,
+    seed: Annotated[int | None, typer.Option(help="Run seed (default 0).")] = None,
     seconds: Annotated[
-        float | None, typer.Option(help="Dance length [30 s, or the song if shorter].")
+        float | None, typer.Option(help="Dance length (default 30 s, or the song if shorter).")
     ] = None,
     fitness: Annotated[
         str | None,
-        typer.Option(help="Fitness terms, main goal first, e.g. beat-align,liveliness."),
+        typer.Option(
+            help="Fitness terms, main goal first, e.g. beat-align,liveliness (of "
+            "beat-align, liveliness, humanoid, on-stage, variety; higher is better)."
+        ),
     ] = None,
     weights: Annotated[
         str | None, typer.Option(help="Term weights, e.g. liveliness=0.2,humanoid=1.")
     ] = None,
     phase_in: Annotated[
         str | None,
-        typer.Option(help="Style weights 0 before START, full from FULL, e.g. 5:15 [5:15]."),
+        typer.Option(help="Style weights 0 before START, full from FULL (default 5:15)."),
     ] = None,
-    strategy: Annotated[str | None, typer.Option(help="ga or hybrid [ga].")] = None,
+    strategy: Annotated[str | None, typer.Option(help="ga or hybrid (default ga).")] = None,
     config: Annotated[
         Path | None, typer.Option("--config", help="Run file (TOML); options override it.")
     ] = None,
@@ -156,7 +163,7 @@ def dancers(
     workers: Workers = None,
     db: Db = None,
 ) -> None:
-    """Evolve dancers to a song, storing every generation (resume with ``sinews runs resume``)."""
+    """Evolve dancers to a song, storing every generation (continue with: sinews runs resume)."""
     run_config, song_name, length = dancer_evolution.dancer_config(
         file_values=load_toml(config) if config is not None else {},
         options={
