@@ -15,6 +15,4 @@ class SinewsError(Exception):
 
 def missing_extra(module: str, extra: str) -> SinewsError:
     """The error for an optional dependency that is not installed."""
-    return SinewsError(
-        f"{module} is not installed; install it with: pip install 'sinews[{extra}]'"
-    )
+    return SinewsError(f"{module} is not installed; install it with: pip install 'sinews[{extra}]'")
