@@ -1,4 +1,9 @@
-"""``sinews evolve dancers``: an automatic evolution run with a progress bar and a summary."""
+"""``sinews evolve dancers`` and ``sinews evolve FIGURE``: automatic runs with a progress bar.
+
+``sinews evolve snake|luxo|humanoid --controller KIND`` runs the controller
+kind's experiment (`sinews.experiments.figure_runs.FIGURE_EXPERIMENTS`); a new
+kind needs no new command.
+"""
 
 from __future__ import annotations
 
@@ -15,10 +20,26 @@ from rich.table import Table
 from sinews.evolve import EVALUATORS, Evaluator, make_evaluator
 from sinews.experiments import dancer_evolution
 from sinews.experiments.evolution import GenerationSummary
+from sinews.experiments.figure_runs import (
+    FIGURE_EXPERIMENTS,
+    FIGURES,
+    experiment_of,
+    figure_experiment,
+    read_keep_file,
+)
 from sinews.experiments.run_config import load_toml
-from sinews.store import RunStore, generation_stats
+from sinews.store import RunInfo, RunStore, generation_stats
 
-__all__ = ["Db", "Executor", "Scheduler", "Workers", "open_store", "register", "run_with_progress"]
+__all__ = [
+    "Db",
+    "Executor",
+    "Scheduler",
+    "Workers",
+    "default_executor",
+    "open_store",
+    "register",
+    "run_with_progress",
+]
 
 evolve_app = typer.Typer(help="Evolve a population automatically.", no_args_is_help=True)
 
@@ -26,7 +47,11 @@ Db = Annotated[
     Path | None, typer.Option("--db", help="Run database (default: the app's data dir).")
 ]
 Executor = Annotated[
-    str, typer.Option(help=f"Where dancers are simulated: {', '.join(EVALUATORS)}.")
+    str | None,
+    typer.Option(
+        help=f"Where individuals are simulated: {', '.join(EVALUATORS)} (default: processes "
+        "for dancers; serial for figures, whose physics already uses every core)."
+    ),
 ]
 Scheduler = Annotated[
     str | None, typer.Option(help="Dask scheduler address, e.g. tcp://head:8786.")
@@ -41,12 +66,19 @@ def open_store(db: Path | None) -> RunStore:
     return RunStore(db)
 
 
+def default_executor(info: RunInfo) -> str:
+    """``serial`` for figure runs (MuJoCo steps a batch on every core), else ``processes``."""
+    return "serial" if experiment_of(info) is not None else "processes"
+
+
 def run_with_progress(
     store: RunStore, run_id: int, *, evaluator: Evaluator, generations: int | None = None
 ) -> None:
-    """Run or resume a dancer run with a progress bar, then print its summary table."""
+    """Run or resume a run of any kind with a progress bar, then print its summary table."""
     console = Console(stderr=True)
     info = store.run(run_id)
+    experiment = experiment_of(info)
+    run = dancer_evolution.run_dancers if experiment is None else experiment.run
     total = generations or int(info.config["generations"])
     done = store.last_generation(run_id) + 1
     columns = (
@@ -73,9 +105,7 @@ def run_with_progress(
             )
 
         try:
-            dancer_evolution.run_dancers(
-                store, run_id, evaluator=evaluator, generations=generations, on_generation=show
-            )
+            run(store, run_id, evaluator=evaluator, generations=generations, on_generation=show)
         except BaseException:
             if store.run(run_id).status == "failed":
                 console.print(
@@ -112,7 +142,7 @@ def print_summary(store: RunStore, run_id: int) -> None:
         console.print(
             f"best: individual {best.id} (generation {best.generation}, #{best.index}), "
             f"fitness {_number(best.fitness)}",
-            f"  sinews runs best {run_id} -o dancer.json",
+            f"  sinews runs best {run_id} -o best.json",
             f"  sinews render {run_id} --best -o best.mp4",
             f"  sinews plot {run_id} -o fitness.png",
             sep="\n",
@@ -158,7 +188,7 @@ def dancers(
     config: Annotated[
         Path | None, typer.Option("--config", help="Run file (TOML); options override it.")
     ] = None,
-    executor: Executor = "processes",
+    executor: Executor = None,
     scheduler: Scheduler = None,
     workers: Workers = None,
     db: Db = None,
@@ -181,7 +211,7 @@ def dancers(
     started = time.perf_counter()
     with (
         open_store(db) as store,
-        make_evaluator(executor, workers=workers, scheduler=scheduler) as evaluator,
+        make_evaluator(executor or "processes", workers=workers, scheduler=scheduler) as evaluator,
     ):
         run_id = dancer_evolution.create_dancer_run(
             store, run_config, song=song_name, seconds=length
@@ -189,6 +219,79 @@ def dancers(
         typer.echo(f"run {run_id} in {store.path}", err=True)
         run_with_progress(store, run_id, evaluator=evaluator)
     typer.echo(f"{time.perf_counter() - started:.1f} s", err=True)
+
+
+def _figure_command(figure: str) -> None:
+    """Register ``sinews evolve FIGURE``."""
+
+    def evolve_figure(
+        controller: Annotated[
+            str, typer.Option(help=f"Controller kind: {', '.join(FIGURE_EXPERIMENTS)}.")
+        ] = "springnet",
+        population: Annotated[
+            int | None, typer.Option(help="Individuals per generation (default 2000).")
+        ] = None,
+        generations: Annotated[
+            int | None, typer.Option(help="Generations to run (default 20).")
+        ] = None,
+        seconds: Annotated[
+            float | None, typer.Option(help="Length of each trial (default 5 s).")
+        ] = None,
+        seed: Annotated[int | None, typer.Option(help="Run seed (default 0).")] = None,
+        masses: Annotated[
+            int | None,
+            typer.Option(help="Point masses per spring net (default: 4, or one per joint)."),
+        ] = None,
+        strategy: Annotated[
+            str | None, typer.Option(help="alton (the paper's GA, default), ga or hybrid.")
+        ] = None,
+        keep: Annotated[
+            Path | None,
+            typer.Option(
+                help="Hand picks: a file of lines 'GENERATION: INDEX INDEX ...' naming "
+                "individuals that survive that generation whatever their rank."
+            ),
+        ] = None,
+        config: Annotated[
+            Path | None, typer.Option("--config", help="Run file (TOML); options override it.")
+        ] = None,
+        executor: Executor = None,
+        scheduler: Scheduler = None,
+        workers: Workers = None,
+        db: Db = None,
+    ) -> None:
+        experiment = figure_experiment(controller)
+        options = {
+            "population": population,
+            "generations": generations,
+            "seconds": seconds,
+            "seed": seed,
+            "masses": masses,
+            "strategy": strategy,
+            "keep": None if keep is None else read_keep_file(keep),
+        }
+        started = time.perf_counter()
+        file_values = load_toml(config) if config is not None else {}
+        with open_store(db) as store:
+            run_id = experiment.create_run(
+                store, figure=figure, file_values=file_values, options=options
+            )
+            typer.echo(f"run {run_id} in {store.path}", err=True)
+            with make_evaluator(
+                executor or "serial", workers=workers, scheduler=scheduler
+            ) as evaluator:
+                run_with_progress(store, run_id, evaluator=evaluator)
+        typer.echo(f"{time.perf_counter() - started:.1f} s", err=True)
+
+    evolve_figure.__doc__ = (
+        f"Evolve controllers that move the {figure} as far as they can (|x_end - x_start|), "
+        "storing every generation (continue with: sinews runs resume)."
+    )
+    evolve_app.command(figure)(evolve_figure)
+
+
+for _figure in FIGURES:
+    _figure_command(_figure)
 
 
 def register(app: typer.Typer) -> None:

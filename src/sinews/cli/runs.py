@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 from typing import Annotated
 
@@ -14,6 +15,7 @@ from sinews.cli.evolve import (
     Executor,
     Scheduler,
     Workers,
+    default_executor,
     open_store,
     print_summary,
     run_with_progress,
@@ -22,6 +24,7 @@ from sinews.dancers import DancerGenome
 from sinews.errors import SinewsError
 from sinews.evolve import make_evaluator
 from sinews.experiments import dancer_evolution
+from sinews.experiments.figure_runs import FigureExperiment, experiment_of
 from sinews.store import Individual, RunStore, code_version, export_run, generation_stats
 
 __all__ = ["register"]
@@ -84,13 +87,20 @@ def show(run: Run, db: Db = None) -> None:
 
 @runs_app.command("best")
 def best(run: Run, output: Output, db: Db = None) -> None:
-    """Save the run's best dancer as a genome JSON file."""
+    """Save the run's best individual as JSON (a dancer genome, or a figure's controller)."""
     with open_store(db) as store:
         individual = store.best(run)
-        _dancer_genome(store, individual).save(output)
+        experiment = experiment_of(store.run(run))
+        if experiment is None:
+            _dancer_genome(store, individual).save(output)
+            seed = f", wiggle seed {individual.seed}"
+        else:
+            document = experiment.genome_document(store, individual)
+            output.write_text(json.dumps(document, indent=1) + "\n", encoding="utf-8")
+            seed = ""
         typer.echo(
             f"wrote {output} (individual {individual.id}, generation {individual.generation}, "
-            f"fitness {_number(individual.fitness)}, wiggle seed {individual.seed})"
+            f"fitness {_number(individual.fitness)}{seed})"
         )
 
 
@@ -122,7 +132,7 @@ def resume(
     generations: Annotated[
         int | None, typer.Option(help="New total of generations (to extend a run).")
     ] = None,
-    executor: Executor = "processes",
+    executor: Executor = None,
     scheduler: Scheduler = None,
     workers: Workers = None,
     db: Db = None,
@@ -140,7 +150,9 @@ def resume(
                 f"{code_version()}; new generations may differ from an uninterrupted run",
                 err=True,
             )
-        with make_evaluator(executor, workers=workers, scheduler=scheduler) as evaluator:
+        with make_evaluator(
+            executor or default_executor(info), workers=workers, scheduler=scheduler
+        ) as evaluator:
             run_with_progress(store, run, evaluator=evaluator, generations=generations)
 
 
@@ -160,20 +172,39 @@ def render(
     run: Run,
     output: Output,
     individual: Annotated[int | None, typer.Option(help="Individual id to render.")] = None,
-    best_: Annotated[bool, typer.Option("--best", help="Render the run's best dancer.")] = False,
-    debug_overlay: Annotated[bool, typer.Option(help="Draw node labels and force arrows.")] = False,
-    size: Annotated[int, typer.Option(help="Picture size in pixels.")] = 480,
+    best_: Annotated[
+        bool, typer.Option("--best", help="Render the run's best individual.")
+    ] = False,
+    generations: Annotated[
+        str | None,
+        typer.Option(
+            help="Figure runs: the best of these generations one after another in one .mp4, "
+            "'all' or e.g. 0,5,19."
+        ),
+    ] = None,
+    debug_overlay: Annotated[
+        bool, typer.Option(help="Dancers: draw node labels and force arrows.")
+    ] = False,
+    size: Annotated[int, typer.Option(help="Picture width in pixels (figures: 3:4 high).")] = 480,
     db: Db = None,
 ) -> None:
-    """Re-simulate a stored dancer and draw it (.mp4 with the song, .gif, .png, .svg)."""
+    """Re-simulate stored individuals and draw them.
+
+    Dancers: .mp4 with the song, .gif, .png, .svg. Figures: .mp4 with the
+    controller's net above the figure, or a .png/.svg strobe picture.
+    """
     from sinews.render import render as draw
 
-    if (individual is None) == (not best_):
-        raise SinewsError("give either --individual ID or --best")
+    if [individual is not None, best_, generations is not None].count(True) != 1:
+        raise SinewsError("give either --individual ID or --best (or, for figures, --generations)")
     with open_store(db) as store:
-        chosen = store.best(run) if individual is None else store.individual(individual)
-        if chosen.run_id != run:
-            raise SinewsError(f"individual {chosen.id} belongs to run {chosen.run_id}, not {run}")
+        experiment = experiment_of(store.run(run))
+        if experiment is not None:
+            _render_figures(store, run, experiment, output, individual, generations, size)
+            return
+        if generations is not None:
+            raise SinewsError("--generations is for figure runs")
+        chosen = _chosen(store, run, individual)
         traj, song = dancer_evolution.simulate_individual(
             store, chosen, record_forces=debug_overlay
         )
@@ -183,8 +214,74 @@ def render(
     typer.echo(f"wrote {path} (individual {chosen.id}, fitness {_number(chosen.fitness)})")
 
 
+def _chosen(store: RunStore, run: int, individual: int | None) -> Individual:
+    """The individual ``individual`` of ``run``, or the run's best if None."""
+    chosen = store.best(run) if individual is None else store.individual(individual)
+    if chosen.run_id != run:
+        raise SinewsError(f"individual {chosen.id} belongs to run {chosen.run_id}, not {run}")
+    return chosen
+
+
+def _generation_bests(store: RunStore, run: int, generations: str) -> list[Individual]:
+    """The best individual of each generation named by ``all`` or ``0,5,19``."""
+    stats = generation_stats(store.scores(run))
+    available = stats.generations.tolist()
+    if generations.strip() == "all":
+        wanted = available
+    else:
+        try:
+            wanted = [int(g) for g in generations.split(",") if g.strip()]
+        except ValueError:
+            raise SinewsError("--generations takes 'all' or numbers like 0,5,19") from None
+    missing = sorted(set(wanted) - set(available))
+    if missing or not wanted:
+        raise SinewsError(f"run {run} has no scored generation {missing[0] if missing else ''}")
+    best_index = dict(zip(available, stats.best_index.tolist(), strict=True))
+    return [store.individuals(run, g)[best_index[g]] for g in wanted]
+
+
+def _render_figures(
+    store: RunStore,
+    run: int,
+    experiment: FigureExperiment,
+    output: Path,
+    individual: int | None,
+    generations: str | None,
+    size: int,
+) -> None:
+    """Replay and draw one individual, or the best of several generations in sequence."""
+    from sinews.render import FigureGeometry, FigurePainter, render_figure, render_figure_sequence
+
+    if generations is None:
+        chosen = [_chosen(store, run, individual)]
+    else:
+        chosen = _generation_bests(store, run, generations)
+    replays = experiment.replay(store, chosen)
+    pixels = (size, 3 * size // 4)
+    geometry = FigureGeometry.of(replays[0].figure)
+    titles = [
+        f"{r.figure.name}, generation {r.individual.generation} #{r.individual.index}"
+        for r in replays
+    ]
+    if generations is None:
+        (replay,) = replays
+        path = render_figure(geometry, replay.trajectory, output, size=pixels,
+                             panel=replay.panel, title=titles[0])  # fmt: skip
+    else:
+        painters = [
+            FigurePainter(geometry, r.trajectory, size=pixels, panel=r.panel, title=title)
+            for r, title in zip(replays, titles, strict=True)
+        ]
+        path = render_figure_sequence(painters, output)
+    media_of = chosen[0].id if len(chosen) == 1 else None
+    store.add_media(run, path, kind=path.suffix.lstrip(".").lower(), individual_id=media_of)
+    described = ", ".join(f"{r.individual.id}: {abs(r.distance):.3f} m" for r in replays[:4])
+    more = f" and {len(replays) - 4} more" if len(replays) > 4 else ""
+    typer.echo(f"wrote {path} (individual {described}{more})")
+
+
 def plot(run: Run, output: Output, db: Db = None) -> None:
-    """Plot best and mean fitness per generation and the best dancer's terms."""
+    """Plot best and mean fitness per generation and the terms of each generation's best."""
     from sinews.render import plot_fitness
 
     with open_store(db) as store:
@@ -192,7 +289,8 @@ def plot(run: Run, output: Output, db: Db = None) -> None:
         stats = generation_stats(store.scores(run))
         if not len(stats.generations):
             raise SinewsError(f"run {run} has no scored generations yet")
-        series = {"best": stats.best, "mean": stats.mean, **stats.best_terms}
+        terms = stats.best_terms if len(stats.best_terms) > 1 else {}  # one term: = best
+        series = {"best": stats.best, "mean": stats.mean, **terms}
         song = info.config.get("song", "")
         title = f"run {run}: {info.kind}{f' to {song}' if song else ''} (terms of each best)"
         path = plot_fitness(stats.generations, series, output, title)
@@ -203,7 +301,7 @@ def plot(run: Run, output: Output, db: Db = None) -> None:
 def _dancer_genome(store: RunStore, individual: Individual) -> DancerGenome:
     kind = store.run(individual.run_id).kind
     if kind != dancer_evolution.KIND:
-        raise SinewsError(f"run {individual.run_id} evolves {kind}; this command needs dancers")
+        raise SinewsError(f"run {individual.run_id} evolves {kind}, which this command cannot read")
     return DancerGenome(individual.genome)
 
 

@@ -196,11 +196,6 @@ def run_dancers(
         generations: a new total, to extend a run (None keeps the stored one).
         on_generation: called after each stored generation.
     """
-    info = store.run(run_id)
-    if generations is not None and generations != info.config["generations"]:
-        if generations < info.generations:
-            raise SinewsError(f"run {run_id} already has {info.generations} generations")
-        store.update_config(run_id, {**info.config, "generations": generations})
     scorer = _scorer(store.run(run_id), evaluator)
     continue_run(
         store,
@@ -208,6 +203,7 @@ def run_dancers(
         scorer=scorer,
         spec=scorer.spec,
         genome_size=DancerGenome.SIZE,
+        generations=generations,
         on_generation=on_generation,
     )
 

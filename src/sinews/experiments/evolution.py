@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import dataclasses
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol
 
@@ -34,6 +34,7 @@ from sinews.evolve import (
     individual_seeds,
     strategy_rng,
 )
+from sinews.evolve.alton import AltonGA
 from sinews.store import GenerationRecord, RunStore
 
 __all__ = [
@@ -117,7 +118,7 @@ def new_strategy(config: dict[str, Any], *, genome_size: int, seed: int) -> Stra
 def _tell(strategy: Strategy, fitness: npt.NDArray[np.float64] | None, picks: list[int]) -> None:
     if isinstance(strategy, InteractiveStrategy):
         strategy.tell(picks)
-    elif isinstance(strategy, HybridStrategy):
+    elif isinstance(strategy, HybridStrategy | AltonGA):
         strategy.tell(_need(fitness), picks)
     elif isinstance(strategy, GeneticAlgorithm):
         if picks:
@@ -216,6 +217,8 @@ def continue_run(
     scorer: Scorer,
     spec: FitnessSpec,
     genome_size: int,
+    generations: int | None = None,
+    picks: Callable[[int], Sequence[int]] | None = None,
     on_generation: Callable[[GenerationSummary], None] | None = None,
 ) -> None:
     """Run generations until the run has ``config["generations"]``, then mark it finished.
@@ -224,16 +227,38 @@ def continue_run(
     interrupted at any point. An interactive run stops after generation 0
     and stays ``running``: it advances by a person's picks (`record_picks`).
     An exception marks the run ``failed`` (it can still be resumed).
+
+    Args:
+        store: the run store.
+        run_id: the run.
+        scorer: scores each new generation.
+        spec: combines the terms into fitness.
+        genome_size: G.
+        generations: a new total, to extend the run (None keeps the stored one).
+        picks: ``picks(g)`` gives the individuals of generation g a person
+            marked (told with g's fitness when breeding g + 1), for strategies
+            that take picks alongside fitness.
+        on_generation: called after each stored generation.
+
+    Raises:
+        SinewsError: ``generations`` is fewer than the run already has.
     """
     info = store.run(run_id)
-    target = int(info.config["generations"])
+    if generations is not None and generations != info.config["generations"]:
+        if generations < info.generations:
+            raise SinewsError(f"run {run_id} already has {info.generations} generations")
+        store.update_config(run_id, {**info.config, "generations": generations})
+    target = int(store.run(run_id).config["generations"])
     store.set_status(run_id, "running")
     try:
         strategy = restore_strategy(store, run_id, genome_size=genome_size)
         while (last := store.last_generation(run_id)) + 1 < target:
             if last >= 0 and isinstance(strategy, InteractiveStrategy):
                 return
-            summary = advance(store, run_id, scorer=scorer, spec=spec, strategy=strategy)
+            kept = list(picks(last)) if picks is not None and last >= 0 else None
+            summary = advance(
+                store, run_id, scorer=scorer, spec=spec, strategy=strategy, picks=kept
+            )
             if on_generation is not None:
                 on_generation(summary)
     except BaseException:

@@ -1,6 +1,7 @@
 """Drawing trajectories: pictures, animations with sound, contact sheets, fitness plots.
 
-Everything here reads `sinews.trajectory.Trajectory` objects only. Drawing
+Everything here reads `sinews.trajectory.Trajectory` objects (figures: with
+their `FigureGeometry`, the system the states place). Drawing
 goes through the renderer-neutral `Canvas` seam, with a Pillow raster back
 end (PNG, GIF, MP4 frames) and an SVG back end.
 
@@ -13,6 +14,13 @@ from __future__ import annotations
 
 from sinews.render.canvas import Canvas, Color, Point
 from sinews.render.errors import RenderError
+from sinews.render.figure import (
+    FigureGeometry,
+    FigurePainter,
+    NetPanel,
+    render_figure,
+    render_figure_sequence,
+)
 from sinews.render.media import (
     iter_frames,
     make_painter,
@@ -34,7 +42,10 @@ __all__ = [
     "Box",
     "Canvas",
     "Color",
+    "FigureGeometry",
+    "FigurePainter",
     "FramePainter",
+    "NetPanel",
     "Overlay",
     "Point",
     "RasterCanvas",
@@ -47,6 +58,8 @@ __all__ = [
     "make_painter",
     "plot_fitness",
     "render",
+    "render_figure",
+    "render_figure_sequence",
     "save_gif",
     "save_mp4",
     "save_png",

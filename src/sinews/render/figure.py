@@ -1,0 +1,424 @@
+"""Drawing articulated figures in 2D from their model and a trajectory ("system plus states").
+
+`FigureGeometry` is the system: the figure's capsules, boxes, spheres,
+cylinders and ellipsoids read from its compiled MuJoCo model, and the model to
+place them. A trajectory's ``qpos`` frames are the states; forward kinematics
+turns them into each geom's centre and axes in the x-z plane (planar figures
+turn about y only). `FigurePainter` draws a frame on any `Canvas`: the ground
+with a metre scale, a start marker where the root began, an arrow from it to
+the root's x now labelled with the distance, and, above, an optional
+`NetPanel`: a spring net's masses as dots moving on its axis, the springs as
+arcs, each driving mass in the colour of the part its joint moves.
+
+The camera shows the whole motion when it is short; when the figure travels
+more than three times its own size, it follows the figure at a fixed scale.
+Still pictures (PNG, SVG) are strobe images: poses at even times, older ones
+fainter, with the whole path in view.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import numpy.typing as npt
+
+from sinews.figures import Figure
+from sinews.figures._mujoco import require_mujoco
+from sinews.render._output import atomic_output, suffix_of
+from sinews.render.canvas import Canvas, Color, Point, shade
+from sinews.render.errors import RenderError
+from sinews.render.ffmpeg import encode_mp4
+from sinews.render.figure_panel import NetPanel, draw_panel
+from sinews.render.raster import RasterCanvas
+from sinews.render.style import Style, default_colors
+from sinews.render.svg import SvgCanvas
+from sinews.render.view import View
+from sinews.trajectory import Trajectory
+
+__all__ = [
+    "FigureGeometry",
+    "FigurePainter",
+    "NetPanel",
+    "render_figure",
+    "render_figure_sequence",
+]
+
+FloatArray = npt.NDArray[np.float64]
+Size = int | tuple[int, int]
+
+_SPHERE, _CAPSULE, _ELLIPSOID, _CYLINDER, _BOX = 2, 3, 4, 5, 6  # mjtGeom values
+_START_COLOR: Color = (46, 139, 87)
+_DISTANCE_COLOR: Color = (200, 60, 40)
+_FOLLOW_AFTER = 3.0  # follow the figure once its path is this many times its size
+_PANEL_SHARE = 0.22  # of the canvas height
+_GROUND_SHARE = 0.2  # of the figure area, below the ground line
+
+
+@dataclass(frozen=True, eq=False)
+class GeomPoses:
+    """Where every geom is in each frame, in the x-z plane (metres).
+
+    Attributes:
+        centers: (T, K, 2) geom centres.
+        ax: (T, K, 2) each geom's local x axis.
+        az: (T, K, 2) each geom's local z axis (a capsule's length runs along it).
+    """
+
+    centers: FloatArray
+    ax: FloatArray
+    az: FloatArray
+
+
+@dataclass(frozen=True, eq=False)
+class FigureGeometry:
+    """The drawable geoms of a figure (the world's floor excluded).
+
+    Build with `FigureGeometry.of`.
+
+    Attributes:
+        figure: the figure.
+        kinds: (K,) MuJoCo geom type of each geom.
+        half: (K, 3) each geom's half extent along its local x and z axes and
+            its rounding radius, metres: ``|ax|·half[0] + |az|·half[1] + half[2]``
+            bounds it.
+        body: (K,) index of each geom's body in ``figure.body_names``.
+        joint_bodies: (n_act,) index of the body each actuated joint moves.
+    """
+
+    figure: Figure
+    kinds: npt.NDArray[np.int64]
+    half: FloatArray
+    body: npt.NDArray[np.int64]
+    joint_bodies: npt.NDArray[np.int64]
+
+    @classmethod
+    def of(cls, figure: Figure) -> FigureGeometry:
+        """Read the geoms of ``figure``'s compiled model."""
+        model = figure.model()
+        keep = [g for g in range(model.ngeom) if model.geom_bodyid[g] > 0]
+        kinds = model.geom_type[keep].astype(np.int64)
+        size = model.geom_size[keep]
+        half = np.zeros((len(keep), 3))
+        for k, (kind, s) in enumerate(zip(kinds.tolist(), size, strict=True)):
+            if kind == _CAPSULE:
+                half[k] = (0.0, s[1], s[0])
+            elif kind == _SPHERE:
+                half[k] = (0.0, 0.0, s[0])
+            elif kind == _CYLINDER:
+                half[k] = (s[0], s[1], 0.0)
+            elif kind in (_BOX, _ELLIPSOID):
+                half[k] = (s[0], s[2], 0.0)
+            else:
+                raise RenderError(f"{figure.name}: cannot draw geom type {kind}")
+        joints = [model.jnt_bodyid[model.joint(j).id] - 1 for j in figure.joints]
+        return cls(
+            figure=figure,
+            kinds=kinds,
+            half=half,
+            body=model.geom_bodyid[keep].astype(np.int64) - 1,
+            joint_bodies=np.array(joints, dtype=np.int64),
+        )
+
+    def poses(self, qpos: npt.ArrayLike) -> GeomPoses:
+        """Forward kinematics of (T, nq) frames."""
+        mujoco = require_mujoco()
+        model = self.figure.model()
+        frames = np.asarray(qpos, dtype=np.float64)
+        if frames.ndim != 2 or frames.shape[1] != model.nq:
+            raise RenderError(f"qpos must have shape (T, {model.nq}), got {frames.shape}")
+        data = mujoco.MjData(model)
+        keep = np.flatnonzero(model.geom_bodyid > 0)
+        centers = np.empty((len(frames), len(keep), 2))
+        axes = np.empty((len(frames), len(keep), 2, 3))
+        for t, q in enumerate(frames):
+            data.qpos[:] = q
+            mujoco.mj_kinematics(model, data)
+            centers[t] = data.geom_xpos[keep][:, [0, 2]]
+            axes[t] = data.geom_xmat[keep].reshape(-1, 3, 3)[:, [0, 2], :]
+        return GeomPoses(centers, axes[..., 0], axes[..., 2])
+
+    def extents(self, poses: GeomPoses) -> FloatArray:
+        """(T, 4) each frame's bounds (x_min, y_min, x_max, y_max) over all geoms."""
+        reach = np.abs(poses.ax) * self.half[:, 0, None] + np.abs(poses.az) * self.half[:, 1, None]
+        reach += self.half[:, 2, None]
+        lo = (poses.centers - reach).min(axis=1)
+        hi = (poses.centers + reach).max(axis=1)
+        return np.concatenate([lo, hi], axis=1)
+
+
+def _pixels(size: Size) -> tuple[int, int]:
+    width, height = (size, size) if isinstance(size, int) else size
+    return int(width) + int(width) % 2, int(height) + int(height) % 2
+
+
+class FigurePainter:
+    """Draws frames of one figure's trajectory (views and colours worked out once).
+
+    Args:
+        geometry: the figure's geoms.
+        traj: its motion (``qpos`` needed).
+        size: canvas pixels, an int for a square or (width, height); rounded up to even.
+        panel: the controller's net to draw above the figure, or None.
+        title: text in the top-left corner of the figure area.
+        style: colours; None for `Style()`.
+        still: one view of the whole motion (for strobe pictures) instead of a
+            follow camera.
+    """
+
+    def __init__(
+        self,
+        geometry: FigureGeometry,
+        traj: Trajectory,
+        *,
+        size: Size = (480, 360),
+        panel: NetPanel | None = None,
+        title: str | None = None,
+        style: Style | None = None,
+        still: bool = False,
+    ) -> None:
+        if traj.qpos is None:
+            raise RenderError("a figure trajectory needs qpos")
+        if panel is not None and len(panel.positions) != traj.n_frames:
+            raise RenderError(f"the panel has {len(panel.positions)} frames, not {traj.n_frames}")
+        self.geometry, self.traj, self.panel, self.title = geometry, traj, panel, title
+        self.style = style or Style()
+        self.width, self.height = _pixels(size)
+        self.poses = geometry.poses(traj.qpos)
+        self.root_x = np.asarray(traj.qpos, dtype=np.float64)[:, 0]
+        self._panel_px = round(_PANEL_SHARE * self.height) if panel is not None else 0
+        self._views = self._camera(geometry.extents(self.poses), still)
+        colors = default_colors(len(geometry.figure.body_names)).astype(np.float64)
+        self._fill = [_color(c) for c in colors[geometry.body]]
+        self._joint_colors = [_color(c) for c in colors[geometry.joint_bodies]]
+        self._text_px = max(9.0, 0.045 * min(self.width, self.height))
+
+    @property
+    def n_frames(self) -> int:
+        """Frames of the trajectory."""
+        return self.traj.n_frames
+
+    def _camera(self, boxes: FloatArray, still: bool) -> list[View]:
+        """One view per frame: fixed on the whole motion, or following the figure."""
+        area_h = self.height - self._panel_px
+        ground_px = _GROUND_SHARE * area_h
+        size = max(float((boxes[:, 2] - boxes[:, 0]).max()), float((boxes[:, 3]).max()), 0.05)
+        x_lo = min(float(boxes[:, 0].min()), float(self.root_x[0])) - 0.15 * size
+        x_hi = max(float(boxes[:, 2].max()), float(self.root_x[0])) + 0.15 * size
+        y_top = float(boxes[:, 3].max()) + 0.15 * size
+        y_low = min(float(boxes[:, 1].min()), 0.0)
+        follow = not still and x_hi - x_lo > _FOLLOW_AFTER * size
+        span = _FOLLOW_AFTER * size if follow else x_hi - x_lo
+        scale = min(self.width / span, (area_h - ground_px - 4.0) / max(y_top - y_low, 1e-6))
+        top = y_low + (self.height - ground_px) / scale  # the ground band at the bottom
+        if not follow:
+            left = 0.5 * (x_lo + x_hi) - 0.5 * self.width / scale
+            return [View(self.width, self.height, scale, left, top)] * self.n_frames
+        centers = 0.5 * (boxes[:, 0] + boxes[:, 2])
+        window = max(1, round(self.traj.fps / 2))  # smooth over half a second
+        kernel = np.ones(2 * window + 1) / (2 * window + 1)
+        smooth = np.convolve(np.pad(centers, window, mode="edge"), kernel, mode="valid")
+        half = 0.5 * self.width / scale
+        return [View(self.width, self.height, scale, c - half, top) for c in smooth.tolist()]
+
+    def draw(self, canvas: Canvas, frames: int | Sequence[int]) -> None:
+        """Draw one frame, or several as a strobe (earlier ones fainter, the last on top).
+
+        Args:
+            canvas: where to draw; its size should be the painter's.
+            frames: frame index, or indices oldest first.
+        """
+        chosen = [frames] if isinstance(frames, int) else list(frames)
+        if not chosen or not all(0 <= f < self.n_frames for f in chosen):
+            raise RenderError(f"frames must be in [0, {self.n_frames}), got {chosen}")
+        last = chosen[-1]
+        view = self._views[last]
+        canvas.clear(self.style.background)
+        self._draw_ground(canvas, view)
+        self._draw_start(canvas, view)
+        for k, frame in enumerate(chosen):  # oldest first, fainter the older
+            age = len(chosen) - 1 - k
+            fade = 0.0 if age == 0 else 0.45 + 0.45 * age / len(chosen)
+            self._draw_body(canvas, view, frame, fade)
+        self._draw_markers(canvas, view, last)
+        if self.panel is not None:
+            draw_panel(
+                canvas, self.panel, last, (self.width, self._panel_px),
+                joint_colors=self._joint_colors, style=self.style,
+            )  # fmt: skip
+        if self.title is not None:
+            pad = 0.4 * self._text_px
+            canvas.text((pad, self._panel_px + pad), self.title, self.style.text_color,
+                        size=self._text_px, halo=self.style.background)  # fmt: skip
+
+    def _draw_ground(self, canvas: Canvas, view: View) -> None:
+        y = view.y_px(0.0)
+        corners = [(0.0, y), (float(self.width), y), (float(self.width), float(self.height)),
+                   (0.0, float(self.height))]  # fmt: skip
+        canvas.polygon(corners, self.style.ground_color)
+        canvas.line((0.0, y), (float(self.width), y), self.style.floor_color, 1.5)
+        step = next(s for s in (0.1, 0.2, 0.25, 0.5, 1.0, 2.0, 5.0, 10.0, 1e9)
+                    if s * view.scale >= 40)  # fmt: skip
+        x0, _, x1, _ = view.box
+        for k in range(math.ceil(x0 / step), math.floor(x1 / step) + 1):
+            px = view.to_px((k * step, 0.0))[0]
+            canvas.line((px, y), (px, y + 5.0), self.style.floor_color, 1.0)
+            canvas.text((px, y + 5.0), f"{k * step:g}", shade(self.style.floor_color, 1.1),
+                        size=0.7 * self._text_px, anchor="mt")  # fmt: skip
+
+    def _draw_body(self, canvas: Canvas, view: View, frame: int, fade: float) -> None:
+        poses, half = self.poses, self.geometry.half
+        center, ax, az = poses.centers[frame], poses.ax[frame], poses.az[frame]
+        background = np.asarray(self.style.background, dtype=np.float64)
+        for k, kind in enumerate(self.geometry.kinds.tolist()):
+            fill_rgb = np.asarray(self._fill[k], dtype=np.float64) * (1 - fade) + background * fade
+            fill = _color(fill_rgb)
+            rim = _color(fill_rgb * 0.55 * (1 - fade) + background * fade)
+            c, sx, sz, r = center[k], ax[k] * half[k, 0], az[k] * half[k, 1], half[k, 2]
+            if kind in (_CAPSULE, _SPHERE):
+                ends = view.to_px(np.array([c - sz, c + sz]))
+                start, end = (ends[0, 0], ends[0, 1]), (ends[1, 0], ends[1, 1])
+                radius = max(r * view.scale, 1.0)
+                if kind == _SPHERE or np.allclose(start, end):
+                    canvas.circle(start, radius, fill, rim, 1.0)
+                else:
+                    canvas.line(start, end, rim, 2.0 * radius + 2.0)
+                    canvas.line(start, end, fill, 2.0 * radius)
+            else:
+                if kind == _ELLIPSOID:
+                    angles = np.linspace(0.0, 2.0 * np.pi, 24, endpoint=False)[:, None]
+                    outline = c + np.cos(angles) * sx + np.sin(angles) * sz
+                else:
+                    outline = np.array([c - sx - sz, c + sx - sz, c + sx + sz, c - sx + sz])
+                points: list[Point] = [(x, y) for x, y in view.to_px(outline).tolist()]
+                canvas.polygon(points, fill, rim, 1.0)
+
+    def _below(self, view: View) -> float:
+        """The canvas row of the distance arrow, inside the ground band."""
+        ground = view.y_px(0.0)
+        return min(ground + 0.45 * _GROUND_SHARE * (self.height - self._panel_px),
+                   self.height - 1.2 * self._text_px)  # fmt: skip
+
+    def _draw_start(self, canvas: Canvas, view: View) -> None:
+        """A flag where the root started, down to the distance arrow."""
+        ground = view.y_px(0.0)
+        start = float(view.to_px((self.root_x[0], 0.0))[0])
+        flag = ground - 0.12 * (self.height - self._panel_px)
+        canvas.line((start, ground), (start, flag), _START_COLOR, 2.0)
+        canvas.polygon([(start, flag), (start + 9.0, flag + 3.5), (start, flag + 7.0)],
+                       _START_COLOR)  # fmt: skip
+        canvas.line((start, ground), (start, self._below(view) + 4.0), _START_COLOR, 1.0)
+
+    def _draw_markers(self, canvas: Canvas, view: View, frame: int) -> None:
+        below = self._below(view)
+        start = float(view.to_px((self.root_x[0], 0.0))[0])
+        now = float(view.to_px((self.root_x[frame], 0.0))[0])
+        distance = self.root_x[frame] - self.root_x[0]
+        if abs(now - start) >= 2.0:
+            canvas.arrow((start, below), (now, below), _DISTANCE_COLOR, 2.0)
+        middle = min(
+            max(0.5 * (start + now), 3.0 * self._text_px), self.width - 3.0 * self._text_px
+        )
+        label = f"{abs(distance):.2f} m"
+        canvas.text((middle, below + 3.0), label, _DISTANCE_COLOR, size=0.9 * self._text_px,
+                    anchor="mt", halo=self.style.ground_color)  # fmt: skip
+        canvas.text((self.width - 0.4 * self._text_px, self._panel_px + 0.4 * self._text_px),
+                    f"{frame / self.traj.fps:.1f} s", self.style.text_color,
+                    size=self._text_px, anchor="rt", halo=self.style.background)  # fmt: skip
+
+
+def _color(rgb: FloatArray) -> Color:
+    r, g, b = (int(v) for v in np.clip(np.round(rgb), 0, 255).tolist())
+    return (r, g, b)
+
+
+def _frames(painter: FigurePainter, step: int) -> Iterator[npt.NDArray[np.uint8]]:
+    canvas = RasterCanvas(painter.width, painter.height)
+    for frame in range(0, painter.n_frames, step):
+        painter.draw(canvas, frame)
+        yield canvas.to_array()
+
+
+def _step(traj: Trajectory, fps: float | None) -> int:
+    if fps is not None and not fps > 0:
+        raise RenderError(f"fps must be positive, got {fps}")
+    return 1 if fps is None else max(1, math.ceil(traj.fps / fps - 1e-9))
+
+
+def render_figure_sequence(
+    painters: Sequence[FigurePainter], path: str | os.PathLike[str], *, fps: float | None = None
+) -> Path:
+    """Write clips one after another as one H.264 MP4 (e.g. the best of every generation).
+
+    Args:
+        painters: one per clip, all of one size and frame rate.
+        path: an ``.mp4`` file.
+        fps: highest frame rate wanted (default: the trajectories').
+
+    Returns:
+        ``path``.
+    """
+    suffix_of(path, (".mp4",))
+    if not painters:
+        raise RenderError("no clips to render")
+    first = painters[0]
+    if any((p.width, p.height, p.traj.fps) != (first.width, first.height, first.traj.fps)
+           for p in painters):  # fmt: skip
+        raise RenderError("every clip needs the same size and frame rate")
+    step = _step(first.traj, fps)
+    with atomic_output(path) as tmp:
+        frames = (frame for painter in painters for frame in _frames(painter, step))
+        encode_mp4(frames, tmp, size=(first.width, first.height), fps=first.traj.fps / step)
+    return Path(path)
+
+
+def render_figure(
+    figure: Figure | FigureGeometry,
+    traj: Trajectory,
+    path: str | os.PathLike[str],
+    *,
+    size: Size = (480, 360),
+    panel: NetPanel | None = None,
+    title: str | None = None,
+    fps: float | None = None,
+    strobe: int = 8,
+    style: Style | None = None,
+) -> Path:
+    """Draw a figure's motion: an ``.mp4`` video, or a ``.png``/``.svg`` strobe picture.
+
+    Args:
+        figure: the figure (or its geometry, to reuse it).
+        traj: its motion, with ``qpos``.
+        path: the file; its suffix chooses the format.
+        size: pixels, an int for a square or (width, height).
+        panel: the controller's net to draw above the figure.
+        title: text in the corner.
+        fps: highest video frame rate (default: the trajectory's).
+        strobe: poses in a still picture (evenly spaced, the last frame last).
+        style: colours.
+
+    Returns:
+        ``path``.
+    """
+    suffix = suffix_of(path, (".mp4", ".png", ".svg"))
+    geometry = figure if isinstance(figure, FigureGeometry) else FigureGeometry.of(figure)
+    painter = FigurePainter(geometry, traj, size=size, panel=panel, title=title, style=style,
+                            still=suffix != ".mp4")  # fmt: skip
+    if suffix == ".mp4":
+        return render_figure_sequence([painter], path, fps=fps)
+    frames = np.unique(np.linspace(0, traj.n_frames - 1, max(1, strobe)).round().astype(int))
+    if suffix == ".svg":
+        vector = SvgCanvas(painter.width, painter.height)
+        painter.draw(vector, frames.tolist())
+        with atomic_output(path) as tmp:
+            tmp.write_text(vector.to_string(), encoding="utf-8")
+        return Path(path)
+    raster = RasterCanvas(painter.width, painter.height)
+    painter.draw(raster, frames.tolist())
+    with atomic_output(path) as tmp:
+        raster.image().save(tmp, format="PNG")
+    return Path(path)
