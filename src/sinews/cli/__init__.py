@@ -29,12 +29,14 @@ def _register() -> None:
     from sinews.cli.evolve import register as register_evolve
     from sinews.cli.runs import register as register_runs
     from sinews.cli.songs import register as register_songs
+    from sinews.cli.studio import register as register_studio
 
     register_dancers(app)
     register_songs(app)
     register_bench(app)
     register_evolve(app)
     register_runs(app)
+    register_studio(app)
 
 
 def main(argv: list[str] | None = None) -> int:

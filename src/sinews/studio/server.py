@@ -1,0 +1,92 @@
+"""Starting the studio: open the run, bind the port, serve with uvicorn, open the browser."""
+
+from __future__ import annotations
+
+import socket
+import sys
+import threading
+import time
+import webbrowser
+from collections.abc import Callable
+
+from sinews.errors import SinewsError, missing_extra
+from sinews.studio.service import StudioSettings, Worker
+
+__all__ = ["LOOPBACK", "serve"]
+
+LOOPBACK = ("127.0.0.1", "localhost", "::1")
+
+
+def serve(
+    settings: StudioSettings,
+    *,
+    host: str = "127.0.0.1",
+    port: int = 8765,
+    open_browser: bool = True,
+    say: Callable[[str], None] = print,
+) -> None:
+    """Run the studio until interrupted (Ctrl+C).
+
+    The run is opened (or created) and the port bound before anything is
+    served, so a bad song, an unknown run or a busy port is reported as one
+    line and nothing starts.
+
+    Args:
+        settings: database, song, run to resume, population.
+        host: address to listen on (loopback unless you mean to share it).
+        port: port to listen on; 0 picks a free one.
+        open_browser: open the page in the default browser once it is up.
+        say: where the address and warnings are printed.
+
+    Raises:
+        SinewsError: the studio extra is missing, the settings are unusable
+            or the port is taken.
+    """
+    try:
+        import uvicorn
+
+        from sinews.studio.app import create_app
+    except ImportError as exc:
+        raise missing_extra(exc.name or "starlette", "studio") from None
+    if host not in LOOPBACK:
+        say(f"warning: --host {host} lets other machines reach the studio; it has no login")
+    listener = _bind(host, port)
+    worker = Worker(settings)
+    try:
+        run_id = worker.call(lambda s: s.start())
+    except BaseException:
+        worker.close()
+        listener.close()
+        raise
+    bound = listener.getsockname()[1]
+    url = f"http://{'localhost' if host == '::1' else host}:{bound}/"
+    config = uvicorn.Config(create_app(worker, host=host), log_level="warning", lifespan="on")
+    server = uvicorn.Server(config)
+    say(f"sinews studio: {url} (run {run_id}, database {settings.db}); Ctrl+C stops it")
+    sys.stdout.flush()
+    if open_browser:
+        threading.Thread(target=_open_when_up, args=(server, url), daemon=True).start()
+    server.run(sockets=[listener])
+
+
+def _bind(host: str, port: int) -> socket.socket:
+    family = socket.AF_INET6 if ":" in host else socket.AF_INET
+    listener = socket.socket(family, socket.SOCK_STREAM)
+    listener.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+    try:
+        listener.bind((host, port))
+    except OSError as exc:
+        listener.close()
+        hint = f"; try --port {port + 1}" if port else ""
+        raise SinewsError(f"cannot listen on {host}:{port} ({exc.strerror or exc}){hint}") from None
+    listener.listen(64)
+    listener.set_inheritable(True)
+    return listener
+
+
+def _open_when_up(server: object, url: str) -> None:
+    for _ in range(200):
+        if getattr(server, "started", False):
+            webbrowser.open(url)
+            return
+        time.sleep(0.05)

@@ -1,0 +1,90 @@
+"""Checking what requests send: JSON bodies and query values, with one-line 4xx errors."""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Iterable, Mapping
+from typing import Any
+
+from starlette.requests import Request
+
+from sinews.errors import SinewsError
+
+__all__ = ["MAX_JSON_BYTES", "RequestError", "body_fields", "number", "unit_values", "whole"]
+
+MAX_JSON_BYTES = 64 * 1024
+
+
+class RequestError(SinewsError):
+    """A malformed request; ``status`` is the HTTP status to answer with."""
+
+    def __init__(self, message: str, status: int = 400) -> None:
+        super().__init__(message)
+        self.status = status
+
+
+async def body_fields(
+    request: Request, required: Iterable[str], optional: Iterable[str] = ()
+) -> dict[str, Any]:
+    """The request's JSON object, with exactly the allowed fields.
+
+    Raises:
+        RequestError: not ``application/json`` (415), too large (413), not a
+            JSON object, a missing or an unknown field (400).
+    """
+    if request.headers.get("content-type", "").split(";")[0].strip() != "application/json":
+        raise RequestError("send the request body as application/json", 415)
+    raw = b""
+    async for chunk in request.stream():
+        raw += chunk
+        if len(raw) > MAX_JSON_BYTES:
+            raise RequestError(f"request body larger than {MAX_JSON_BYTES // 1024} KB", 413)
+    try:
+        body = json.loads(raw or b"null")
+    except (json.JSONDecodeError, UnicodeDecodeError):
+        raise RequestError("request body is not valid JSON") from None
+    if not isinstance(body, dict):
+        raise RequestError("request body must be a JSON object")
+    needed, allowed = set(required), set(required) | set(optional)
+    missing = sorted(needed - set(body))
+    if missing:
+        raise RequestError(f"missing field {missing[0]!r}")
+    unknown = sorted(set(body) - allowed)
+    if unknown:
+        raise RequestError(f"unknown field {unknown[0]!r}")
+    return body
+
+
+def number(value: object, name: str, lo: float, hi: float) -> float:
+    """A finite number in [lo, hi] (JSON or query text)."""
+    if isinstance(value, str):
+        try:
+            value = float(value)
+        except ValueError:
+            raise RequestError(f"{name} must be a number") from None
+    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
+        raise RequestError(f"{name} must be a number")
+    if not lo <= value <= hi:
+        raise RequestError(f"{name} must be in [{lo:g}, {hi:g}], got {value:g}")
+    return float(value)
+
+
+def whole(value: object, name: str, lo: int, hi: int) -> int:
+    """An integer in [lo, hi] (JSON or query text)."""
+    if isinstance(value, str) and value.lstrip("-").isdigit():
+        value = int(value)
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise RequestError(f"{name} must be a whole number")
+    if not lo <= value <= hi:
+        raise RequestError(f"{name} must be in [{lo}, {hi}], got {value}")
+    return value
+
+
+def unit_values(values: Mapping[str, str], names: Iterable[str]) -> dict[str, float]:
+    """The given ones of ``names`` from a query, each a number in [0, 1]; others are refused."""
+    allowed = set(names)
+    unknown = sorted(set(values) - allowed)
+    if unknown:
+        raise RequestError(f"unknown parameter {unknown[0]!r}")
+    return {name: number(values[name], name, 0.0, 1.0) for name in values}
