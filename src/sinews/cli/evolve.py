@@ -118,22 +118,22 @@ def run_with_progress(
 def print_summary(store: RunStore, run_id: int) -> None:
     """A table of best and mean fitness and the best's terms per generation, then the winner."""
     stats = generation_stats(store.scores(run_id))
+    terms = stats.best_terms if len(stats.best_terms) > 1 else {}  # one term: = best
     table = Table(
         title=f"run {run_id}: fitness, and the terms of each generation's best",
         box=box.SIMPLE_HEAD,
         collapse_padding=True,
         show_edge=False,
     )
-    for column in ("gen", "best", "mean", "fail", *stats.best_terms):
+    for column in ("gen", "best", "mean", "fail", *terms):
         table.add_column(column, justify="right", min_width=len(column))
     for k, generation in enumerate(stats.generations):
-        terms = [_number(values[k]) for values in stats.best_terms.values()]
         table.add_row(
             str(generation),
             _number(stats.best[k]),
             _number(stats.mean[k]),
             str(stats.failed[k]),
-            *terms,
+            *[_number(values[k]) for values in terms.values()],
         )
     console = Console()
     console.print(table)

@@ -168,6 +168,11 @@ class FigurePainter:
         style: colours; None for `Style()`.
         still: one view of the whole motion (for strobe pictures) instead of a
             follow camera.
+
+    Attributes:
+        poses: where every geom is in each frame.
+        root_x: (T,) the root's x per frame, m.
+        views: (T,) the camera of each frame.
     """
 
     def __init__(
@@ -191,7 +196,7 @@ class FigurePainter:
         self.poses = geometry.poses(traj.qpos)
         self.root_x = np.asarray(traj.qpos, dtype=np.float64)[:, 0]
         self._panel_px = round(_PANEL_SHARE * self.height) if panel is not None else 0
-        self._views = self._camera(geometry.extents(self.poses), still)
+        self.views = self._camera(geometry.extents(self.poses), still)
         colors = default_colors(len(geometry.figure.body_names)).astype(np.float64)
         self._fill = [_color(c) for c in colors[geometry.body]]
         self._joint_colors = [_color(c) for c in colors[geometry.joint_bodies]]
@@ -236,7 +241,7 @@ class FigurePainter:
         if not chosen or not all(0 <= f < self.n_frames for f in chosen):
             raise RenderError(f"frames must be in [0, {self.n_frames}), got {chosen}")
         last = chosen[-1]
-        view = self._views[last]
+        view = self.views[last]
         canvas.clear(self.style.background)
         self._draw_ground(canvas, view)
         self._draw_start(canvas, view)
