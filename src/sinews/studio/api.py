@@ -34,7 +34,14 @@ from sinews.studio.pack import MEDIA_TYPE
 from sinews.studio.runs import MAX_MUTATION, StudioRun
 from sinews.studio.service import Studio, Worker
 from sinews.studio.songs import Song
-from sinews.studio.validate import RequestError, body_fields, number, unit_values, whole
+from sinews.studio.validate import (
+    RequestError,
+    body_fields,
+    number,
+    parse_whole,
+    unit_values,
+    whole,
+)
 
 __all__ = ["routes"]
 
@@ -48,7 +55,7 @@ def _worker(request: Request) -> Worker:
 
 
 def _id(request: Request, name: str) -> int:
-    return whole(request.path_params[name], name, 0, _ID)
+    return parse_whole(request.path_params[name], name, 0, _ID)
 
 
 def _song_json(song: Song) -> dict[str, str]:
@@ -154,7 +161,7 @@ async def sheet(request: Request) -> FileResponse:
     worker = _worker(request)
     people, trajs = await worker.run(lambda s: s.motion.dance_generation(run_id, number_))
     last = trajs[0].n_frames - 1
-    frame = whole(request.query_params.get("frame", str(last // 2)), "frame", 0, last)
+    frame = parse_whole(request.query_params.get("frame", str(last // 2)), "frame", 0, last)
     folder = worker.settings.data_dir / "exports"
     new = not (folder / sheet_name(people, frame)).is_file()
     path = await run_in_threadpool(write_sheet, people, trajs, frame, folder)

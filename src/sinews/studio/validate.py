@@ -11,7 +11,15 @@ from starlette.requests import Request
 
 from sinews.errors import SinewsError
 
-__all__ = ["MAX_JSON_BYTES", "RequestError", "body_fields", "number", "unit_values", "whole"]
+__all__ = [
+    "MAX_JSON_BYTES",
+    "RequestError",
+    "body_fields",
+    "number",
+    "parse_whole",
+    "unit_values",
+    "whole",
+]
 
 MAX_JSON_BYTES = 64 * 1024
 
@@ -57,12 +65,7 @@ async def body_fields(
 
 
 def number(value: object, name: str, lo: float, hi: float) -> float:
-    """A finite number in [lo, hi] (JSON or query text)."""
-    if isinstance(value, str):
-        try:
-            value = float(value)
-        except ValueError:
-            raise RequestError(f"{name} must be a number") from None
+    """A JSON number in [lo, hi]."""
     if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
         raise RequestError(f"{name} must be a number")
     if not lo <= value <= hi:
@@ -71,14 +74,19 @@ def number(value: object, name: str, lo: float, hi: float) -> float:
 
 
 def whole(value: object, name: str, lo: int, hi: int) -> int:
-    """An integer in [lo, hi] (JSON or query text)."""
-    if isinstance(value, str) and value.lstrip("-").isdigit():
-        value = int(value)
+    """A JSON integer in [lo, hi]."""
     if isinstance(value, bool) or not isinstance(value, int):
         raise RequestError(f"{name} must be a whole number")
     if not lo <= value <= hi:
         raise RequestError(f"{name} must be in [{lo}, {hi}], got {value}")
     return value
+
+
+def parse_whole(text: str, name: str, lo: int, hi: int) -> int:
+    """An integer in [lo, hi] written in a path or query."""
+    if not text.isascii() or not text.isdigit():
+        raise RequestError(f"{name} must be a whole number")
+    return whole(int(text), name, lo, hi)
 
 
 def unit_values(values: Mapping[str, str], names: Iterable[str]) -> dict[str, float]:
@@ -87,4 +95,11 @@ def unit_values(values: Mapping[str, str], names: Iterable[str]) -> dict[str, fl
     unknown = sorted(set(values) - allowed)
     if unknown:
         raise RequestError(f"unknown parameter {unknown[0]!r}")
-    return {name: number(values[name], name, 0.0, 1.0) for name in values}
+    found = {}
+    for name, text in values.items():
+        try:
+            value = float(text)
+        except ValueError:
+            raise RequestError(f"{name} must be a number") from None
+        found[name] = number(value, name, 0.0, 1.0)
+    return found

@@ -21,7 +21,7 @@ export class Stage {
     this.hooks = hooks;
     this.pack = null;
     this.overlay = false;
-    this.live = null; // {positions, forces} once a node was grabbed
+    this.live = null; // {frame, positions, forces} from the server once a node was grabbed
     this.grab = null; // {node, px: [x, y]} while the mouse holds a node
     this.v = null;
     canvas.addEventListener("pointerdown", (event) => this.press(event));
@@ -81,7 +81,7 @@ export class Stage {
     await this.hooks.play();
     try {
       await this.link.start(this.pack.header.id, this.genes);
-      if (!this.live) this.live = { positions: this.shown, forces: null };
+      if (!this.live) this.live = { frame: -1, positions: this.shown, forces: null };
       this.hooks.onLive(true);
     } catch {
       this.grab = null;
@@ -115,7 +115,7 @@ export class Stage {
     if (this.live) {
       if (this.link.ready && !this.link.busy) {
         this.link.step(t, this.target()).then((reply) => {
-          if (reply && this.live) this.live = { positions: reply.positions, forces: reply.forces };
+          if (reply && this.live) this.live = reply;
         });
       }
       xy = this.live.positions;

@@ -1,0 +1,73 @@
+"""Running ``sinews studio`` in a subprocess for the browser tests."""
+
+from __future__ import annotations
+
+import queue
+import signal
+import subprocess
+import sys
+import threading
+from pathlib import Path
+
+CHROMIUM = Path("/usr/bin/chromium")
+CHROMIUM_ARGS = [
+    "--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
+    "--disable-component-update", "--no-first-run", "--disable-sync", "--disable-quic",
+]  # fmt: skip
+DATA = Path(__file__).resolve().parents[1] / "data"
+START_TIMEOUT = 90.0
+
+
+class StudioServer:
+    """``sinews studio`` in a subprocess; ``url`` once it listens."""
+
+    def __init__(self, db: Path, env: dict[str, str], *args: str) -> None:
+        code = "import sys; from sinews.cli import main; sys.exit(main(sys.argv[1:]))"
+        command = [sys.executable, "-c", code, "studio", "--no-browser", "--port", "0"]
+        self.process = subprocess.Popen(
+            [*command, "--db", str(db), *args],
+            env=env,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+        )
+        self.output: list[str] = []
+        lines: queue.Queue[str] = queue.Queue()
+        threading.Thread(target=self._read, args=(lines,), daemon=True).start()
+        self.url = self._wait_for_url(lines)
+
+    def _read(self, lines: queue.Queue[str]) -> None:
+        assert self.process.stdout is not None
+        for line in self.process.stdout:
+            self.output.append(line)
+            lines.put(line)
+
+    def _wait_for_url(self, lines: queue.Queue[str]) -> str:
+        while True:
+            try:
+                line = lines.get(timeout=START_TIMEOUT)
+            except queue.Empty:
+                self.kill()
+                raise RuntimeError("the studio did not start:\n" + "".join(self.output)) from None
+            if "http://" in line:
+                return "http://" + line.split("http://", 1)[1].split()[0]
+
+    @property
+    def run_id(self) -> int:
+        """The run the server opened (from its start-up line)."""
+        first = next(line for line in self.output if "(run " in line)
+        return int(first.split("(run ", 1)[1].split(",")[0])
+
+    def kill(self) -> None:
+        """SIGKILL: nothing gets a chance to clean up."""
+        self.process.send_signal(signal.SIGKILL)
+        self.process.wait(timeout=30)
+
+    def stop(self) -> None:
+        """Ctrl+C, as a person would."""
+        if self.process.poll() is None:
+            self.process.send_signal(signal.SIGINT)
+            try:
+                self.process.wait(timeout=30)
+            except subprocess.TimeoutExpired:
+                self.kill()

@@ -1,0 +1,226 @@
+"""The studio in a real browser: Debian's headless Chromium, Playwright, ``sinews studio``."""
+
+from __future__ import annotations
+
+import json
+import re
+import subprocess
+from pathlib import Path
+from typing import Any
+
+import imageio_ffmpeg
+import pytest
+from playwright.sync_api import expect
+from studio_helpers import DATA, StudioServer
+
+INK = """(selector) => [...document.querySelectorAll(selector)].map((canvas) => {
+  const data = canvas.getContext("2d").getImageData(0, 0, canvas.width, canvas.height).data;
+  const off = (k, [r, g, b]) => Math.abs(data[k] - r) + Math.abs(data[k + 1] - g)
+    + Math.abs(data[k + 2] - b);
+  let ink = 0;  // pixels that are neither paper nor ground
+  for (let k = 0; k < data.length; k += 4) {
+    if (off(k, [250, 248, 243]) > 80 && off(k, [232, 228, 219]) > 80) ink++;
+  }
+  return { ink, picture: canvas.toDataURL() };
+})"""
+
+NEXT_FRAME = """() => new Promise((resolve) => requestAnimationFrame(() => resolve(
+  [Number(document.body.dataset.frame), studio.clock.context.currentTime - studio.clock.start]
+)))"""
+
+NODE_ON_SCREEN = """(name) => {
+  const stage = studio.stage;
+  const i = stage.pack.header.names.indexOf(name);
+  const box = stage.canvas.getBoundingClientRect();
+  const x = (stage.shown[2 * i] - stage.v.left) * stage.v.scale;
+  const y = (stage.v.top - stage.shown[2 * i + 1]) * stage.v.scale;
+  return [i, box.left + (x * box.width) / stage.canvas.width,
+          box.top + (y * box.height) / stage.canvas.height];
+}"""
+
+
+def open_studio(page: Any, url: str) -> None:
+    """Load the page and wait until a generation is drawn."""
+    page.goto(url)
+    page.wait_for_function("window.studio && studio.generation && studio.stage.pack")
+    expect(page.locator(".cell canvas")).to_have_count(16)
+
+
+def play_a_little(page: Any) -> None:
+    page.click("#play")
+    page.wait_for_function("Number(document.body.dataset.frame) > 30")
+
+
+def fresh_run(page: Any) -> None:
+    """Start a new run (random dancers) so a test does not depend on others' breeding."""
+    run = page.evaluate("studio.run.id")
+    page.click("#new-run")
+    page.wait_for_function(
+        f"studio.generation.header.run !== {run} && !document.body.classList.contains('busy')"
+    )
+
+
+def cells(page: Any) -> list[dict[str, Any]]:
+    return page.eval_on_selector_all(
+        ".cell",
+        "(cells) => cells.map((c) => ({index: Number(c.dataset.index), id: Number(c.dataset.id),"
+        " parents: c.dataset.parents ? c.dataset.parents.split(' ').map(Number) : []}))",
+    )
+
+
+def test_the_grid_shows_sixteen_different_dancers(
+    page: Any, server: StudioServer, shots: Path
+) -> None:
+    open_studio(page, server.url)
+    play_a_little(page)
+    page.click("#play")  # pause: the picture stays still
+    drawn = page.evaluate(INK, ".cell canvas")
+    assert len(drawn) == 16
+    assert all(d["ink"] > 300 for d in drawn), [d["ink"] for d in drawn]
+    assert len({d["picture"] for d in drawn}) == 16
+    page.screenshot(path=shots / "grid.png")
+
+
+def test_picking_two_and_breeding_makes_their_children(
+    page: Any, server: StudioServer, shots: Path
+) -> None:
+    open_studio(page, server.url)
+    fresh_run(page)
+    first = {c["index"]: c["id"] for c in cells(page)}
+    page.click(".cell[data-index='2']")
+    page.click(".cell[data-index='5']")
+    expect(page.locator(".cell.picked")).to_have_count(2)
+    expect(page.locator("#breed")).to_have_text("Breed 2 picks")
+    page.click("#breed")
+    page.wait_for_function("studio.generationNumber === 1")
+    expect(page.locator("#generations button")).to_have_count(2)
+    picks = {first[2], first[5]}
+    children = cells(page)
+    assert all(c["parents"] and set(c["parents"]) <= picks for c in children)
+    crossed = next(c for c in children if len(c["parents"]) == 2)
+    page.click(f".cell[data-index='{crossed['index']}'] .to-stage")
+    ancestors = page.locator(".lineage-row .ancestor[data-generation='0']")
+    expect(ancestors).to_have_count(2)
+    shown = ancestors.evaluate_all("(all) => all.map((a) => Number(a.dataset.id))")
+    assert set(shown) == picks
+    page.click("#play")
+    page.screenshot(path=shots / "bred.png")
+    ancestors.first.click()  # the lineage is clickable: back to generation 0, that dancer staged
+    page.wait_for_function("studio.generationNumber === 0")
+    staged = page.evaluate("studio.staged")
+    assert staged in picks
+    expect(page.locator(f".cell.staged[data-id='{staged}']")).to_have_count(1)
+
+
+def test_the_audio_clock_drives_the_frames(page: Any, server: StudioServer) -> None:
+    open_studio(page, server.url)
+    play_a_little(page)
+    page.click("#play")  # pause: the AudioContext is suspended, its clock stops
+    expect(page.locator("#play")).to_have_attribute("aria-pressed", "false")
+    held = page.evaluate(NEXT_FRAME)[0]
+    page.wait_for_timeout(400)
+    assert page.evaluate(NEXT_FRAME)[0] == held
+
+    def picture_at(seconds: float) -> str:
+        page.evaluate(f"studio.clock.seek({seconds})")
+        frame = round(seconds * 60)
+        page.wait_for_function(f"Number(document.body.dataset.frame) === {frame}")
+        return page.evaluate(INK, ".cell[data-index='0'] canvas")[0]["picture"]
+
+    at_five = picture_at(5.0)
+    assert picture_at(20.0) != at_five
+    assert picture_at(5.0) == at_five  # the same song time draws the same picture
+    page.click("#play")
+    page.wait_for_function("Number(document.body.dataset.frame) > 5 * 60 + 30")
+    frame, audio_seconds = page.evaluate(NEXT_FRAME)  # read just after the page drew `frame`
+    assert 0 <= audio_seconds * 60 - frame <= 3  # at most the time it took to draw
+
+
+def test_dragging_a_node_pulls_the_dancer(page: Any, server: StudioServer, shots: Path) -> None:
+    open_studio(page, server.url)
+    page.check("#overlay")
+    play_a_little(page)
+    node, x, y = page.evaluate(NODE_ON_SCREEN, "pelvis")
+    page.mouse.move(x, y)
+    page.mouse.down()
+    page.mouse.move(x + 140, y - 40, steps=8)
+    page.wait_for_function("studio.stage.live && studio.stage.live.frame > 0")
+    start = page.evaluate("studio.stage.live.frame")
+    page.wait_for_function(f"studio.stage.live.frame > {start} + 45")
+    expect(page.locator("#stage-box")).to_have_class(re.compile("live"))
+    page.screenshot(path=shots / "drag.png")
+    moved = page.evaluate(
+        """(i) => {
+      const {frame, positions} = studio.stage.live;
+      const recorded = studio.stage.pack.arrays.positions.data;
+      const n = studio.stage.pack.header.names.length;
+      return positions[2 * i] - recorded[(frame * n + i) * 2];
+    }""",
+        node,
+    )
+    page.mouse.up()
+    assert moved > 0.2  # metres toward the mouse, beyond where the recorded dance has it
+
+
+def test_uploading_a_corrupt_file_shows_one_line(page: Any, server: StudioServer) -> None:
+    open_studio(page, server.url)
+    junk = {"name": "broken.mp3", "mimeType": "audio/mpeg", "buffer": b"ID3\x03" + bytes(20000)}
+    page.set_input_files("#upload", files=[junk])
+    message = page.locator("#message.error")
+    expect(message).to_contain_text("broken.mp3")
+    assert "\n" not in message.inner_text().strip()
+    assert "/" not in message.inner_text()  # no server paths
+    expect(page.locator(".cell canvas")).to_have_count(16)  # the page still works
+
+
+def test_export_downloads_an_mp4_with_the_song(
+    page: Any, server: StudioServer, tmp_path: Path
+) -> None:
+    open_studio(page, server.url)
+    page.set_input_files("#upload", str(DATA / "loop_mika.flac"))  # 8 s: a quick video
+    page.wait_for_function("studio.run.song.name === 'loop_mika.flac' && studio.stage.pack")
+    with page.expect_download() as genome:
+        page.click("[data-export='json']")
+    doc = json.loads(Path(genome.value.path()).read_text())
+    assert doc["kind"] == "sinews.dancer"
+    with page.expect_download(timeout=120_000) as video:
+        page.click("[data-export='mp4']")
+    path = tmp_path / video.value.suggested_filename
+    video.value.save_as(path)
+    assert path.suffix == ".mp4"
+    probe = subprocess.run(
+        [imageio_ffmpeg.get_ffmpeg_exe(), "-hide_banner", "-i", str(path)],
+        capture_output=True,
+        text=True,
+    ).stderr
+    assert re.search(r"Stream #0:\d.*Video: h264", probe), probe
+    assert re.search(r"Stream #0:\d.*Audio: ", probe), probe
+
+
+@pytest.mark.slow
+def test_ten_generations_survive_a_killed_server(
+    page: Any, tmp_path: Path, studio_env: dict[str, str]
+) -> None:
+    db = tmp_path / "studio.db"
+    first = StudioServer(db, studio_env)
+    try:
+        open_studio(page, first.url)
+        for generation in range(10):
+            for index in {generation % 16, (5 * generation + 3) % 16}:
+                page.click(f".cell[data-index='{index}']")
+            page.click("#breed")
+            page.wait_for_function(f"studio.generationNumber === {generation + 1}")
+        bred = [c["id"] for c in cells(page)]
+    finally:
+        first.kill()
+    again = StudioServer(db, studio_env, "--resume", str(first.run_id))
+    try:
+        open_studio(page, again.url)
+        assert page.evaluate("studio.run.last") == 10
+        expect(page.locator("#generations button")).to_have_count(11)
+        assert [c["id"] for c in cells(page)] == bred
+        page.click(".cell[data-index='0']")
+        page.click("#breed")
+        page.wait_for_function("studio.generationNumber === 11")
+    finally:
+        again.stop()
