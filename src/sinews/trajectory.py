@@ -3,8 +3,9 @@
 A `Trajectory` holds the node positions of one body (or one scene) per frame,
 plus what a renderer or a fitness term needs to read them: the edges between
 nodes, node names, radii and colours, and optionally the music's beats and the
-responders' triggers, the per-node forces for a debug overlay, or a rigid
-figure's generalised coordinates.
+responders' triggers, the per-node forces for a debug overlay, a rigid
+figure's generalised coordinates, or for scenes whose parts appear and
+vanish (balloons, babies, links) which nodes and edges show in each frame.
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ import numpy.typing as npt
 
 from sinews.errors import SinewsError
 
-__all__ = ["Trajectory", "TrajectoryError"]
+__all__ = ["NODE_SHAPES", "Trajectory", "TrajectoryError"]
 
 FORMAT_VERSION = 1
 
@@ -31,7 +32,11 @@ FloatArray = npt.NDArray[np.floating]
 
 _OPTIONAL = (
     "radii", "colors", "beats", "triggers", "trigger_nodes", "forces", "qpos", "body_pos",
+    "node_visible", "edge_visible", "node_shapes",
 )  # fmt: skip
+
+NODE_SHAPES = frozenset({"disc", "heart", "spike"})
+"""How a node can be drawn (`Trajectory.node_shapes`)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -51,6 +56,9 @@ class Trajectory:
         forces: (T, N, 2) float32 newtons on each node (debug overlay), or None.
         qpos: (T, nq) float64 generalised coordinates of a rigid figure, or None.
         body_pos: (T, B, 3) float32 rigid-body positions of a figure, or None.
+        node_visible: (T, N) bool, which nodes show in each frame, or None (all).
+        edge_visible: (T, E) bool, which edges show in each frame, or None (all).
+        node_shapes: (N,) one of `NODE_SHAPES` per node, or None (all discs).
         failed: True if the simulation blew up (NaN/inf or runaway energy).
     """
 
@@ -66,6 +74,9 @@ class Trajectory:
     forces: FloatArray | None = None
     qpos: FloatArray | None = None
     body_pos: FloatArray | None = None
+    node_visible: npt.NDArray[np.bool_] | None = None
+    edge_visible: npt.NDArray[np.bool_] | None = None
+    node_shapes: tuple[str, ...] | None = None
     failed: bool = False
 
     def __post_init__(self) -> None:
@@ -105,6 +116,26 @@ class Trajectory:
             raise TrajectoryError("qpos must have one row per frame")
         if self.body_pos is not None and np.shape(self.body_pos)[0] != n_frames:
             raise TrajectoryError("body_pos must have one row per frame")
+        self._check_visibility(n_frames, n_nodes, len(edges))
+
+    def _check_visibility(self, n_frames: int, n_nodes: int, n_edges: int) -> None:
+        for name, shape in (
+            ("node_visible", (n_frames, n_nodes)),
+            ("edge_visible", (n_frames, n_edges)),
+        ):
+            value = getattr(self, name)
+            if value is not None:
+                if np.shape(value) != shape:
+                    raise TrajectoryError(f"{name} must have shape {shape}, got {np.shape(value)}")
+                object.__setattr__(self, name, np.asarray(value, dtype=bool))
+        if self.node_shapes is not None:
+            shapes = tuple(str(s) for s in self.node_shapes)
+            if len(shapes) != n_nodes:
+                raise TrajectoryError(f"{len(shapes)} node shapes for {n_nodes} nodes")
+            unknown = sorted(set(shapes) - NODE_SHAPES)
+            if unknown:
+                raise TrajectoryError(f"unknown node shape {unknown[0]!r}")
+            object.__setattr__(self, "node_shapes", shapes)
 
     @property
     def n_frames(self) -> int:
@@ -141,7 +172,7 @@ class Trajectory:
         for name in _OPTIONAL:
             value = getattr(self, name)
             if value is not None:
-                arrays[name] = value
+                arrays[name] = np.array(value, dtype=str) if name == "node_shapes" else value
         tmp = path.with_name(path.name + ".part")
         with open(tmp, "wb") as fh:
             np.savez_compressed(fh, **arrays)  # type: ignore[arg-type]

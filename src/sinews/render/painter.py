@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 from typing import Any
 
@@ -18,6 +19,42 @@ __all__ = ["FramePainter", "fit_positions", "frame_index", "has_floor", "node_ra
 
 _FAR_PX = 1e6  # points further off-canvas than this are not drawn (blown-up runs)
 _BLOWN_UP_METRES = 1e3
+
+
+def _unit_heart(n_points: int = 48) -> npt.NDArray[np.float64]:
+    """(n_points, 2) the classic heart curve, x and y (down) in [-1, 1], centred on its box."""
+    t = np.linspace(0.0, 2.0 * np.pi, n_points, endpoint=False)
+    x = 16.0 * np.sin(t) ** 3
+    y = 13.0 * np.cos(t) - 5.0 * np.cos(2 * t) - 2.0 * np.cos(3 * t) - np.cos(4 * t)
+    y -= 0.5 * (y.max() + y.min())
+    return np.stack([x, -y], axis=1) / 16.0
+
+
+_HEART = _unit_heart()
+
+
+def _spike_anchors(traj: Trajectory, spikes: list[int]) -> dict[int, int]:
+    """Each spike node's anchor: the other end of its first edge (itself if it has none)."""
+    anchors = {}
+    for i in spikes:
+        (rows,) = np.nonzero((traj.edges == i).any(axis=1))
+        anchors[i] = int(traj.edges[rows[0]].sum()) - i if rows.size else i
+    return anchors
+
+
+def _spike(point: Point, anchor: Point, radius: float) -> list[Point]:
+    """A triangle on ``point`` pointing away from ``anchor`` (up if they coincide), like an ear."""
+    dx, dy = point[0] - anchor[0], point[1] - anchor[1]
+    length = float(np.hypot(dx, dy))
+    ux, uy = (dx / length, dy / length) if length > 1e-9 else (0.0, -1.0)
+    tip = (point[0] + 1.6 * radius * ux, point[1] + 1.6 * radius * uy)
+    base = (point[0] - 0.6 * radius * ux, point[1] - 0.6 * radius * uy)
+    half = 1.1 * radius
+    return [
+        tip,
+        (base[0] - half * uy, base[1] + half * ux),
+        (base[0] + half * uy, base[1] - half * ux),
+    ]
 
 
 def frame_index(traj: Trajectory, frame: int | None) -> int:
@@ -43,7 +80,11 @@ def fit_positions(traj: Trajectory) -> npt.NDArray[np.floating]:
     """(T', N, 2) the frames to fit a view to: all, or for a failed run those before it blew up.
 
     A frame has blown up once a node is non-finite or more than a kilometre out.
+    Hidden nodes (``traj.node_visible``) are NaN, so a view ignores them.
     """
+    if traj.node_visible is not None:
+        shown = np.where(traj.node_visible[..., None], traj.positions, np.nan)
+        traj = dataclasses.replace(traj, positions=shown, node_visible=None)
     if not traj.failed:
         return traj.positions
     sane = (np.abs(traj.positions) <= _BLOWN_UP_METRES).all(axis=(1, 2))  # False for NaN too
@@ -74,8 +115,11 @@ class FramePainter:
     """Draws frames of one trajectory; sizes and scales are worked out once.
 
     Nodes are discs of their radius (at least ``style.min_radius_px``) in
-    their colour with a darker rim; tendons are thin lines in the darkened
-    mean colour of their two nodes. Non-finite nodes (failed runs) are skipped.
+    their colour with a darker rim (or hearts, or spikes pointing away from
+    the other end of their first edge, like ears: see ``traj.node_shapes``);
+    tendons are thin lines in the darkened mean colour of their two nodes.
+    Non-finite nodes (failed runs) are skipped, and so are nodes and edges a
+    frame hides (``traj.node_visible``, ``traj.edge_visible``).
 
     Args:
         traj: the motion to draw.
@@ -110,6 +154,9 @@ class FramePainter:
         self._colors = {key: _as_colors(rgb) for key, rgb in self._rgb.items()}
         radii = node_radii(traj, self.style)
         self._radius_px = np.maximum(radii * view.scale, self.style.min_radius_px).tolist()
+        shapes = traj.node_shapes or ()
+        self._hearts = {i for i, shape in enumerate(shapes) if shape == "heart"}
+        self._spikes = _spike_anchors(traj, [i for i, s in enumerate(shapes) if s == "spike"])
         self._edge_px = max(1.0, self.style.edge_width * side)
         self._text_px = max(8.0, 0.022 * side)
         self._floor = has_floor(traj, self.style)
@@ -206,6 +253,8 @@ class FramePainter:
         """Canvas position of every node in ``frame``, and which ones can be drawn."""
         px = self.view.to_px(self.traj.positions[frame])
         visible = np.isfinite(px).all(axis=1) & (np.abs(px) < _FAR_PX).all(axis=1)
+        if self.traj.node_visible is not None:
+            visible &= self.traj.node_visible[frame]
         points = [(x, y) for x, y in np.nan_to_num(px).tolist()]
         return points, np.asarray(visible, dtype=bool).tolist()
 
@@ -218,14 +267,29 @@ class FramePainter:
     def _draw_body(self, canvas: Canvas, frame: int, fade: float) -> None:
         points, visible = self._points(frame)
         edge_colors = self._faded("edge", fade)
-        for (i, j), color in zip(self.traj.edges.tolist(), edge_colors, strict=True):
+        edges = self.traj.edges.tolist()
+        shown = (
+            range(len(edges))
+            if self.traj.edge_visible is None
+            else np.flatnonzero(self.traj.edge_visible[frame]).tolist()
+        )
+        for e in shown:
+            i, j = edges[e]
             if visible[i] and visible[j]:
-                canvas.line(points[i], points[j], color, self._edge_px)
+                canvas.line(points[i], points[j], edge_colors[e], self._edge_px)
         rim_width = max(0.75, 0.4 * self._edge_px)
         for i, (fill, rim) in enumerate(
             zip(self._faded("node", fade), self._faded("rim", fade), strict=True)
         ):
-            if visible[i]:
+            if not visible[i]:
+                continue
+            if i in self._hearts:
+                outline = (_HEART * self._radius_px[i] + points[i]).tolist()
+                canvas.polygon([(x, y) for x, y in outline], fill, rim, rim_width)
+            elif i in self._spikes:
+                corners = _spike(points[i], points[self._spikes[i]], self._radius_px[i])
+                canvas.polygon(corners, fill, rim, rim_width)
+            else:
                 canvas.circle(points[i], self._radius_px[i], fill, rim, rim_width)
 
     def _draw_overlay(self, canvas: Canvas, frame: int, overlay: Overlay) -> None:

@@ -1,0 +1,99 @@
+"""Drawing a headless scene run: the view follows the scene's camera, the score in a corner.
+
+Each scene has its look (`LOOKS`): a sky for Falling for You, a room with
+a wooden floor for the kittens, paper for the scribbles. A camera that moves
+is applied by drawing the motion relative to it, so the renderer needs no
+notion of a moving view.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+from collections.abc import Iterator
+from pathlib import Path
+
+import numpy as np
+import numpy.typing as npt
+
+from sinews.render import FramePainter, Overlay, RasterCanvas, Style, View, render
+from sinews.render.ffmpeg import encode_mp4
+from sinews.scenes.messages import SceneRun
+from sinews.trajectory import Trajectory
+
+__all__ = ["LOOKS", "save_scene"]
+
+LOOKS: dict[str, Style] = {
+    "falling-for-you": Style(background=(206, 228, 246), floor=False, text_color=(40, 60, 90)),
+    "kittens": Style(
+        background=(250, 240, 226), floor=True, floor_color=(150, 104, 62),
+        ground_color=(202, 160, 112), edge_width=0.006,
+    ),
+    "scribbles": Style(
+        background=(252, 251, 246), floor=True, floor_color=(170, 170, 180),
+        ground_color=(238, 238, 242), edge_width=0.006,
+    ),
+}  # fmt: skip
+"""How each scene looks."""
+
+
+def _in_view(run: SceneRun) -> tuple[Trajectory, tuple[float, float, float, float]]:
+    """The motion as the camera sees it, and the world box the view shows."""
+    width, height = run.view_size
+    camera = run.camera
+    traj = run.trajectory
+    if np.ptp(camera, axis=0).max() > 0.0:  # a moving camera: draw relative to it
+        traj = dataclasses.replace(traj, positions=traj.positions - camera[:, None, :])
+        camera = np.zeros_like(camera)
+    x, y = camera[0]
+    return traj, (x - 0.5 * width, y - 0.5 * height, x + 0.5 * width, y + 0.5 * height)
+
+
+def save_scene(
+    run: SceneRun,
+    path: str | os.PathLike[str],
+    *,
+    height: int = 360,
+    fps: float = 30.0,
+    overlay: bool = False,
+) -> Path:
+    """Write a scene run as a video (.mp4, with the score) or a picture (.png, .gif, .svg).
+
+    Args:
+        run: what `Scene.record` returned.
+        path: file to write; the suffix picks the format.
+        height: pixels; the width follows the scene's view.
+        fps: highest frame rate of a video.
+        overlay: the debug overlay (node labels, and force arrows if the run
+            recorded forces).
+    """
+    traj, box = _in_view(run)
+    width_m, height_m = run.view_size
+    size = (2 * round(0.5 * height * width_m / height_m), 2 * round(0.5 * height))
+    style = LOOKS[run.scene]
+    chosen = Overlay() if overlay else None
+    path = Path(path)
+    if path.suffix.lower() != ".mp4":
+        return render(traj, path, size=size, box=box, style=style, overlay=chosen is not None)
+    painter = FramePainter(traj, View.fit(box, size, margin=0.0), style=style, overlay=chosen)
+    step = max(1, round(traj.fps / fps))
+    tmp = path.with_name(path.name + ".part")
+    try:
+        encode_mp4(_frames(painter, run, step), tmp, size=size, fps=traj.fps / step)
+        os.replace(tmp, path)
+    finally:
+        tmp.unlink(missing_ok=True)
+    return path
+
+
+def _frames(painter: FramePainter, run: SceneRun, step: int) -> Iterator[npt.NDArray[np.uint8]]:
+    """Every ``step``-th frame, drawn with the score in the top-left corner."""
+    canvas = RasterCanvas(painter.view.width, painter.view.height)
+    style = painter.style
+    pad = 0.03 * painter.view.height
+    for frame in range(0, painter.traj.n_frames, step):
+        painter.draw(canvas, frame)
+        text = f"{run.score_name}: {run.score[frame]}"
+        size = 0.05 * painter.view.height
+        canvas.text((pad, pad), text, style.text_color, size=size, halo=style.background)
+        yield canvas.to_array()
