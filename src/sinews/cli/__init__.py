@@ -28,6 +28,7 @@ def _register() -> None:
     from sinews.cli.dancers import register as register_dancers
     from sinews.cli.evolve import register as register_evolve
     from sinews.cli.runs import register as register_runs
+    from sinews.cli.scenes import register as register_scenes
     from sinews.cli.songs import register as register_songs
     from sinews.cli.studio import register as register_studio
 
@@ -36,6 +37,7 @@ def _register() -> None:
     register_bench(app)
     register_evolve(app)
     register_runs(app)
+    register_scenes(app)
     register_studio(app)
 
 

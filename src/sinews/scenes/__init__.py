@@ -19,22 +19,32 @@ Example:
 
 from __future__ import annotations
 
+from sinews.scenes.catalog import SCENE_NAMES, make_scene, player
 from sinews.scenes.falling import FallingForYou, FallingTuning
+from sinews.scenes.grab import Pull
 from sinews.scenes.kittens import KittenAvalanche
 from sinews.scenes.messages import NO_INPUT, SceneEvent, SceneFrame, SceneInput, SceneRun, Script
 from sinews.scenes.romance import RomanceTuning
 from sinews.scenes.scene import Scene
+from sinews.scenes.scribbles import Scribbles
+from sinews.scenes.video import save_scene
 
 __all__ = [
     "NO_INPUT",
+    "SCENE_NAMES",
     "FallingForYou",
     "FallingTuning",
     "KittenAvalanche",
+    "Pull",
     "RomanceTuning",
     "Scene",
     "SceneEvent",
     "SceneFrame",
     "SceneInput",
     "SceneRun",
+    "Scribbles",
     "Script",
+    "make_scene",
+    "player",
+    "save_scene",
 ]

@@ -130,7 +130,7 @@ def _coat(names: tuple[str, ...], rng: np.random.Generator) -> npt.NDArray[np.ui
     return np.clip(np.round(colors), 0, 255).astype(np.uint8)
 
 
-def kitten(rng: np.random.Generator, *, length: float = 0.45, dt: float = 1.0 / 480.0) -> Body:
+def kitten(rng: np.random.Generator, *, length: float = 0.5, dt: float = 1.0 / 480.0) -> Body:
     """A seeded kitten standing on y = 0, centred on x = 0, facing left or right.
 
     Args:
@@ -165,7 +165,7 @@ def kitten(rng: np.random.Generator, *, length: float = 0.45, dt: float = 1.0 / 
     if rng.random() < 0.5:
         xy[:, 0] *= -1.0
     radius *= size
-    mass *= size / 0.45
+    mass *= size / 0.5
     names = KITTEN_NODES
     pairs, kinds = [], []
     for kind, springs in _SPRINGS.items():

@@ -26,13 +26,10 @@ __all__ = ["LOOKS", "save_scene"]
 LOOKS: dict[str, Style] = {
     "falling-for-you": Style(background=(206, 228, 246), floor=False, text_color=(40, 60, 90)),
     "kittens": Style(
-        background=(250, 240, 226), floor=True, floor_color=(150, 104, 62),
+        background=(214, 230, 226), floor=True, floor_color=(150, 104, 62),
         ground_color=(202, 160, 112), edge_width=0.006,
     ),
-    "scribbles": Style(
-        background=(252, 251, 246), floor=True, floor_color=(170, 170, 180),
-        ground_color=(238, 238, 242), edge_width=0.006,
-    ),
+    "scribbles": Style(background=(252, 251, 246), floor=False, edge_width=0.006),
 }  # fmt: skip
 """How each scene looks."""
 
