@@ -185,13 +185,9 @@ def _colors(colors: Any) -> list[list[int]]:
 
 
 def _dancer_header(person: Individual, traj: Trajectory) -> dict[str, Any]:
-    heights = traj.positions[..., 1].max(axis=1)
-    finite = heights[np.isfinite(heights)]
     return {
         **_person(person),
-        "seed": person.seed,
         "failed": traj.failed,
-        "top": float(np.percentile(finite, 99)) if finite.size else 2.0,
         "radii": np.round(np.asarray(traj.radii), 3).tolist(),
         "colors": _colors(traj.colors),
         "edges": traj.edges.tolist(),

@@ -36,7 +36,7 @@ def serve(
         host: address to listen on (loopback unless you mean to share it).
         port: port to listen on; 0 picks a free one.
         open_browser: open the page in the default browser once it is up.
-        say: where the address and warnings are printed.
+        say: where the address is printed (warnings go to stderr).
 
     Raises:
         SinewsError: the studio extra is missing, the settings are unusable
@@ -49,7 +49,8 @@ def serve(
     except ImportError as exc:
         raise missing_extra(exc.name or "starlette", "studio") from None
     if host not in LOOPBACK:
-        say(f"warning: --host {host} lets other machines reach the studio; it has no login")
+        print(f"warning: --host {host} lets other machines reach the studio; it has no login",
+              file=sys.stderr)  # fmt: skip
     listener = _bind(host, port)
     worker = Worker(settings)
     try:

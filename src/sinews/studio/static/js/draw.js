@@ -55,12 +55,47 @@ export function cameraTrack(data, scale, offset, frames, nodes, fps) {
   return track;
 }
 
-/** A view showing heights from just below the floor to ``top`` metres, centred on ``x``. */
-export function view(canvas, top, x) {
+/**
+ * How much room a dance needs most of the time: the 95th percentile over frames of its
+ * top (highest node edge) and of its half width around the camera track, in metres,
+ * within [0.5, 2.6] and [0.25, 1.4] (a dancer flinging a hand away may leave the picture).
+ */
+export function extent(data, scale, offset, frames, nodes, radii, track) {
+  const tops = new Float32Array(frames);
+  const halves = new Float32Array(frames);
+  for (let t = 0; t < frames; t++) {
+    const base = offset + t * nodes * 2;
+    let top = 0;
+    let half = 0;
+    for (let i = 0; i < nodes; i++) {
+      top = Math.max(top, data[base + 2 * i + 1] * scale + radii[i]);
+      half = Math.max(half, Math.abs(data[base + 2 * i] * scale - track[t]) + radii[i]);
+    }
+    tops[t] = top;
+    halves[t] = half;
+  }
+  const high = (values) => values.sort()[Math.floor(0.95 * (values.length - 1))];
+  const clip = (value, lo, hi) => Math.min(Math.max(value, lo), hi);
+  return { top: clip(high(tops), 0.5, 2.6), half: clip(high(halves), 0.25, 1.4) };
+}
+
+/**
+ * A view with the floor near the bottom, room for ``room`` ({top, half} metres, see
+ * extent()), centred on ``x``.
+ */
+export function view(canvas, room, x) {
   const low = -0.12;
-  const high = top + 0.12;
-  const scale = canvas.height / (high - low);
-  return { scale, left: x - canvas.width / (2 * scale), top: high, width: canvas.width, height: canvas.height };
+  const scale = Math.min(
+    canvas.height / (room.top + 0.12 - low),
+    canvas.width / (2 * room.half + 0.16),
+  );
+  return {
+    scale,
+    left: x - canvas.width / (2 * scale),
+    top: low + canvas.height / scale,
+    width: canvas.width,
+    height: canvas.height,
+  };
 }
 
 export const toPx = (v, x, y) => [(x - v.left) * v.scale, (v.top - y) * v.scale];

@@ -1,7 +1,7 @@
 // The breeding grid: every dancer of a generation, dancing at the clock's frame.
 // Click a dancer to pick it (again to unpick); its "stage" button shows it large.
 
-import { cameraTrack, drawDancer, paints, pose, view } from "./draw.js";
+import { cameraTrack, drawDancer, extent, paints, pose, view } from "./draw.js";
 
 export class Grid {
   /**
@@ -24,23 +24,31 @@ export class Grid {
     const { header, arrays } = generation;
     const [count, frames, nodes] = arrays.positions.shape;
     const data = arrays.positions.data;
-    const top = Math.max(...header.dancers.map((d) => d.top), 1.0);
     this.element.replaceChildren();
-    this.element.style.setProperty("--columns", count > 16 ? 5 : 4);
+    document.documentElement.style.setProperty("--columns", count > 16 ? 5 : 4);
     this.cells = header.dancers.map((dancer, index) => {
       const offset = index * frames * nodes * 2;
       const cell = this.makeCell(dancer, index);
+      const track = cameraTrack(data, header.scale, offset, frames, nodes, header.fps);
       return {
         dancer,
         index,
         offset,
+        track,
+        room: extent(data, header.scale, offset, frames, nodes, dancer.radii, track),
         element: cell,
         canvas: cell.querySelector("canvas"),
         paint: paints(dancer),
-        track: cameraTrack(data, header.scale, offset, frames, nodes, header.fps),
       };
     });
-    this.size = { frames, nodes, top };
+    // One scale for all, as on a contact sheet, so a big dancer looks big: room for
+    // three dancers in four (the biggest may reach past the edges now and then).
+    const upper = (values) => values.sort((a, b) => a - b)[Math.floor(0.75 * (values.length - 1))];
+    const room = {
+      top: upper(this.cells.map((c) => c.room.top)),
+      half: upper(this.cells.map((c) => c.room.half)),
+    };
+    this.size = { frames, nodes, room };
     this.resize();
     this.hooks.onPicks(this.picks);
   }
@@ -106,11 +114,11 @@ export class Grid {
   draw(frame) {
     if (!this.generation) return;
     const { header, arrays } = this.generation;
-    const { frames, nodes, top } = this.size;
+    const { frames, nodes, room } = this.size;
     const t = Math.min(Math.max(frame, 0), frames - 1);
     for (const cell of this.cells) {
       const g = cell.canvas.getContext("2d");
-      const v = view(cell.canvas, top, cell.track[t]);
+      const v = view(cell.canvas, room, cell.track[t]);
       const xy = pose(arrays.positions.data, header.scale, cell.offset + t * nodes * 2, nodes);
       drawDancer(g, v, cell.dancer, cell.paint, xy);
     }

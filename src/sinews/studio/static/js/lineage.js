@@ -1,7 +1,7 @@
 // The lineage view: the staged dancer and its ancestors, one row per
 // generation, newest first, each drawn in its rest pose. Click one to go to it.
 
-import { drawDancer, paints, view } from "./draw.js";
+import { cameraTrack, drawDancer, extent, paints, view } from "./draw.js";
 
 export class Lineage {
   /**
@@ -54,13 +54,9 @@ export class Lineage {
     button.append(canvas, caption);
     button.addEventListener("click", () => this.onChoose(person));
     const xy = Float32Array.from(person.pose.flat());
-    let top = 0;
-    let centre = 0;
-    for (let i = 0; i < xy.length; i += 2) {
-      top = Math.max(top, xy[i + 1] + person.radii[i / 2]);
-      centre += (2 * xy[i]) / xy.length;
-    }
-    drawDancer(canvas.getContext("2d"), view(canvas, top, centre), person, paints(person), xy);
+    const track = cameraTrack(xy, 1, 0, 1, person.radii.length, 1);
+    const room = extent(xy, 1, 0, 1, person.radii.length, person.radii, track);
+    drawDancer(canvas.getContext("2d"), view(canvas, room, track[0]), person, paints(person), xy);
     return button;
   }
 }

@@ -52,7 +52,10 @@ class Studio {
     for (const button of document.querySelectorAll("[data-export]")) {
       button.addEventListener("click", () => this.exportDancer(button.dataset.export));
     }
-    addEventListener("resize", () => this.grid.resize());
+    addEventListener("resize", () => {
+      this.grid.resize();
+      this.stage.resize();
+    });
   }
 
   async start() {
@@ -63,6 +66,7 @@ class Studio {
     mutation.value = session.mutation.default;
     this.showMutation();
     this.makeSliders(session.sliders);
+    this.stage.resize();
     this.run = await getJSON(`/api/runs/${session.run}`);
     await this.songs.refresh(session.songs);
     await this.openRun(this.run);

@@ -5,7 +5,7 @@
 // frame the page asks for the clock's frame with the node pulled toward the
 // mouse, and draws the answer. It stays live until another dancer is shown.
 
-import { cameraTrack, drawDancer, forceScale, paints, pose, toPx, view } from "./draw.js";
+import { cameraTrack, drawDancer, extent, forceScale, paints, pose, toPx, view } from "./draw.js";
 
 const GRAB_PIXELS = 14;
 
@@ -30,19 +30,26 @@ export class Stage {
     canvas.addEventListener("pointercancel", () => this.release());
   }
 
+  /** Match the canvas's pixels to its size on screen. */
+  resize() {
+    const ratio = window.devicePixelRatio || 1;
+    const box = this.canvas.getBoundingClientRect();
+    this.canvas.width = Math.max(1, Math.round(box.width * ratio));
+    this.canvas.height = Math.max(1, Math.round(box.height * ratio));
+    if (this.pack) this.forceScale = forceScale(this.pack.arrays.forces.data, this.canvas.width);
+  }
+
   /** Show a decoded stage pack (a dancer with forces and triggers); ends any live drag. */
   show(pack, genes) {
     const { header, arrays } = pack;
     const frames = header.frames;
     const nodes = header.names.length;
-    const ys = [];
-    for (let k = 1; k < arrays.positions.data.length; k += 2 * 5) ys.push(arrays.positions.data[k]);
-    ys.sort((a, b) => a - b);
+    const data = arrays.positions.data;
     this.pack = pack;
     this.genes = genes;
     this.paint = paints(header);
-    this.top = Math.max(1.0, ys[Math.floor(0.99 * (ys.length - 1))] || 2);
-    this.track = cameraTrack(arrays.positions.data, 1, 0, frames, nodes, header.fps);
+    this.track = cameraTrack(data, 1, 0, frames, nodes, header.fps);
+    this.room = extent(data, 1, 0, frames, nodes, header.radii, this.track);
     this.forceScale = forceScale(arrays.forces.data, Math.min(this.canvas.width, this.canvas.height));
     this.endLive();
   }
@@ -129,10 +136,21 @@ export class Stage {
       this.camera = null;
     }
     this.shown = xy;
-    this.v = view(this.canvas, this.top, this.camera ?? this.track[t]);
+    const x = this.camera ?? this.track[t];
+    this.v = view(this.canvas, this.live ? this.liveRoom(xy, x) : this.room, x);
     const g = this.canvas.getContext("2d");
     drawDancer(g, this.v, header, this.paint, xy, this.overlay ? this.overlayAt(t, forces) : null);
     if (this.grab) this.drawPull(g);
+  }
+
+  /** The recorded dance's room, grown to hold the live pose. */
+  liveRoom(xy, x) {
+    const room = { ...this.room };
+    this.pack.header.radii.forEach((r, i) => {
+      room.top = Math.max(room.top, xy[2 * i + 1] + r);
+      room.half = Math.max(room.half, Math.abs(xy[2 * i] - x) + r);
+    });
+    return room;
   }
 
   overlayAt(t, forces) {
