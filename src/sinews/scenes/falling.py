@@ -55,7 +55,7 @@ class FallingTuning:
         romance: attraction, links, balloons and babies.
     """
 
-    push: float = 16.0
+    push: float = 30.0
     gust: float = 0.35
     gust_period: float = 2.0
     far: float = 9.0
@@ -76,6 +76,8 @@ class FallingForYou(Scene):
         n_adults: grown-up dolls (at least 2).
         n_babies: babies that may be born.
         tuning: the forces.
+        loves: (n_adults, n_adults) bool, ``loves[a, b]``: doll a is attracted
+            to doll b; None chooses at random (doll 0 always has a partner).
         record_forces: keep the net forces per frame (debug overlay).
     """
 
@@ -89,6 +91,7 @@ class FallingForYou(Scene):
         n_adults: int = 5,
         n_babies: int = 2,
         tuning: FallingTuning | None = None,
+        loves: npt.ArrayLike | None = None,
         record_forces: bool = False,
     ) -> None:
         self.tuning = tuning = tuning or FallingTuning()
@@ -101,7 +104,7 @@ class FallingForYou(Scene):
             name = f"doll{c}" if grown else f"baby{c - n_adults}"
             dolls.append((assembly.add_body(name, body, active=grown), body))
         self.dolls: list[Part] = [part for part, _ in dolls]
-        self.romance = Romance.build(rng, assembly, dolls, n_adults, tuning.romance)
+        self.romance = Romance.build(rng, assembly, dolls, n_adults, tuning.romance, loves)
         world = World(
             assembly.build(drag=_DRAG),
             FALLING_ENGINE,

@@ -29,9 +29,10 @@ class Pull:
 
     Attributes:
         stiffness: newtons per metre between pointer and node.
-        damping: newton-seconds per metre on the node's speed relative to the pointer.
-        max_force: newtons; the spring never pulls harder (the damping, which
-            keeps the node from overtaking the pointer, comes on top).
+        damping: newton-seconds per metre against the node's speed, so it
+            settles on the pointer instead of swinging round it.
+        max_force: newtons; the pull is never stronger (a pointer that jumps
+            far does not yank a light node to pieces).
         reach: metres; a press grabs the visible node whose disc edge is nearest,
             if it is this close.
     """
@@ -54,7 +55,6 @@ class Grab:
         self.pull = pull
         self.node: int | None = None
         self._was_pressed = False
-        self._last_pointer: npt.NDArray[np.float64] | None = None
 
     def update(self, inp: SceneInput, world: World, external: npt.NDArray[np.float64]) -> None:
         """Grab, hold or release from this frame's input; add the pull to ``external`` (N, 2)."""
@@ -67,18 +67,14 @@ class Grab:
         if self.node is not None and not world.node_visible[self.node]:
             self.node = None  # the scene took it away (recycled)
         if self.node is not None and pointer is not None:
-            last = self._last_pointer if self._last_pointer is not None else pointer
-            pointer_velocity = (pointer - last) / world.frame_dt
             pull = self.pull
             offset = pointer - world.positions[self.node]
-            slip = pointer_velocity - world.velocities[self.node]
-            force = pull.stiffness * offset
+            force = pull.stiffness * offset - pull.damping * world.velocities[self.node]
             size = float(np.hypot(*force))
             if size > pull.max_force:
                 force *= pull.max_force / size
-            external[self.node] += force + pull.damping * slip
+            external[self.node] += force
         self._was_pressed = pressed
-        self._last_pointer = pointer
 
     def _nearest(self, world: World, pointer: npt.NDArray[np.float64] | None) -> int | None:
         if pointer is None:

@@ -1,10 +1,13 @@
 """Oh No, Kitten Avalanche! (seed 000, "Novel Interaction Affordances").
 
-Gelatinous kittens tumble onto the screen from above and pile up on the
-floor; the player drags any of their nodes to fling them off-screen. A
-kitten counts as flung once it has been on screen and then every one of its
-nodes is outside the screen box; it is parked and later comes back as a new
-arrival. Arrivals come faster and faster (a gentle difficulty ramp).
+Gelatinous kittens tumble onto the screen from above and land on the floor
+(through each other: the engine, like the paper's, has no collisions); the
+player drags any of their nodes to fling them off-screen. A kitten leaves
+once it has been on screen and then every one of its nodes is outside the
+screen box; it counts as flung if the player ever held it (one that
+wobbles off by itself has wandered). Either way it is parked and later
+comes back as a new arrival. Arrivals come faster and faster (a gentle
+difficulty ramp).
 
 All kittens live in one pre-allocated pool inside the scene's one body;
 parked kittens are weightless, still and hidden far away.
@@ -51,6 +54,7 @@ class KittenAvalanche(Scene):
         screen: (x_min, y_min, x_max, y_max) metres of the screen box.
         interval: seconds until the arrival after next.
         on_screen: (K,) which kittens are out and have entered the screen.
+        held: (K,) which kittens the player has grabbed since they arrived.
 
     Args:
         rng: kitten looks, arrival places, spins and the engine's wiggle seed.
@@ -98,6 +102,7 @@ class KittenAvalanche(Scene):
         self._next_arrival = 0.2
         self._waiting = deque(range(pool))
         self.on_screen = np.zeros(pool, dtype=bool)
+        self.held = np.zeros(pool, dtype=bool)
         self._out = np.zeros(pool, dtype=bool)
         for k in range(pool):
             self._park(k)
@@ -119,6 +124,7 @@ class KittenAvalanche(Scene):
         self.world.park(nodes, at=spot)
         self._out[k] = False
         self.on_screen[k] = False
+        self.held[k] = False
 
     def _arrive(self, k: int) -> None:
         """Drop kitten ``k`` in from above the screen, turned and spinning."""
@@ -147,6 +153,8 @@ class KittenAvalanche(Scene):
             self.interval = max(shortest, self.interval * ramp)
 
     def _after(self, events: list[SceneEvent]) -> None:
+        if self.grab.node is not None:
+            self.held[self.kitten_of(self.grab.node)] = True
         x0, y0, x1, y1 = self.screen
         pos = self.world.positions
         inside = (pos[:, 0] >= x0) & (pos[:, 0] <= x1) & (pos[:, 1] >= y0) & (pos[:, 1] <= y1)
@@ -157,7 +165,7 @@ class KittenAvalanche(Scene):
             if anywhere:
                 self.on_screen[k] = True
             elif self.on_screen[k]:
-                self.score += 1
-                events.append(SceneEvent("flung", (k,)))
+                self.score += int(self.held[k])
+                events.append(SceneEvent("flung" if self.held[k] else "wandered", (k,)))
                 self._park(k)
                 self._waiting.append(k)

@@ -49,7 +49,7 @@ class SceneEvent(NamedTuple):
 
     Attributes:
         kind: e.g. ``"link"``, ``"balloon"``, ``"baby"``, ``"break"``
-            (Falling for You), ``"spawn"``, ``"flung"`` (kittens),
+            (Falling for You), ``"spawn"``, ``"flung"``, ``"wandered"`` (kittens),
             ``"scribble"``, ``"tendons"`` (Scribbles).
         ids: the creatures involved, by the scene's creature index.
     """

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import numpy.typing as npt
 
+from sinews.errors import SinewsError
 from sinews.scenes.assembly import Assembly, Part
 from sinews.scenes.dolls import HANDS
 from sinews.scenes.messages import SceneEvent
@@ -55,8 +56,8 @@ class RomanceTuning:
     reach: float = 2.2
     link_distance: float = 0.12
     link_strength: float = 250.0
-    break_force: float = 90.0
-    lift: float = 1.4
+    break_force: float = 110.0
+    lift: float = 2.0
     baby_delay: float = 2.5
     heartbreak: float = 6.0
 
@@ -114,11 +115,13 @@ class Romance:
         dolls: list[tuple[Part, Body]],
         n_adults: int,
         tuning: RomanceTuning,
+        loves: npt.ArrayLike | None = None,
     ) -> Romance:
         """Choose who loves whom and add every spare part to ``assembly``.
 
-        Each grown-up loves each other one with probability 0.35; doll 0 and
-        one other always love each other, so the story has a couple.
+        Unless ``loves`` says, each grown-up loves each other one with
+        probability 0.35, and doll 0 and one other always love each other,
+        so the story has a couple.
 
         Args:
             rng: who loves whom.
@@ -126,12 +129,19 @@ class Romance:
             dolls: (part, body) of every doll, grown-ups first, then babies.
             n_adults: how many of ``dolls`` are grown-ups.
             tuning: forces and timings.
+            loves: (n_adults, n_adults) bool, who loves whom, or None to choose.
         """
         hands = np.array([[p.nodes.start + b.index(h) for h in HANDS] for p, b in dolls])
-        loves = rng.random((n_adults, n_adults)) < 0.35
-        np.fill_diagonal(loves, False)
-        partner = int(rng.integers(1, n_adults))
-        loves[0, partner] = loves[partner, 0] = True
+        if loves is None:
+            chosen = rng.random((n_adults, n_adults)) < 0.35
+            partner = int(rng.integers(1, n_adults))
+            chosen[0, partner] = chosen[partner, 0] = True
+        else:
+            chosen = np.array(loves, dtype=bool)
+            if chosen.shape != (n_adults, n_adults):
+                raise SinewsError(f"loves must have shape {(n_adults, n_adults)}")
+        np.fill_diagonal(chosen, False)
+        loves = chosen
         pursuits = []
         for a, b in zip(*np.nonzero(loves), strict=True):
             pairs = [
