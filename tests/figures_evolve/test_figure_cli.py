@@ -66,11 +66,14 @@ def test_evolve_show_best_render_plot_resume(
         (["evolve", "luxo", "--keep", "missing.txt"], "cannot read"),
         (["evolve", "snake", "--population", "4"], "at least 5"),
         (["evolve", "snake", "--masses", "1"], "masses must be"),
+        (["evolve", "snake", "--population", "5", "--keep", "KEEP"], "below the population"),
     ],
 )
 def test_user_errors_are_one_line(
     args: list[str], message: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
+    (tmp_path / "keep.txt").write_text("1: 5\n")
+    args = [str(tmp_path / "keep.txt") if a == "KEEP" else a for a in args]
     status, _, err = run(capsys, *args, "--db", str(tmp_path / "runs.db"))
     assert status == 2
     assert err.startswith("error: ") and message in err and err.count("\n") == 1

@@ -292,7 +292,10 @@ def plot(run: Run, output: Output, db: Db = None) -> None:
         terms = stats.best_terms if len(stats.best_terms) > 1 else {}  # one term: = best
         series = {"best": stats.best, "mean": stats.mean, **terms}
         song = info.config.get("song", "")
-        title = f"run {run}: {info.kind}{f' to {song}' if song else ''} (terms of each best)"
+        title = f"run {run}: {info.kind}{f' to {song}' if song else ''}"
+        title += " (terms of each best)" if terms else ""
+        if experiment_of(info) is not None:
+            title += f", seed {info.seed}: distance (m)"
         path = plot_fitness(stats.generations, series, output, title)
         store.add_media(run, path, kind=path.suffix.lstrip(".").lower())
     typer.echo(f"wrote {path}")

@@ -257,9 +257,12 @@ class SpringNetScorer:
     def __call__(self, genomes: FloatArray, seeds: npt.NDArray[np.int64]) -> Scores:
         """Score (P, G) genes (the seeds are unused: the simulation has no noise)."""
         keys = [row.tobytes() for row in genomes]
-        new = list(dict.fromkeys(k for k in keys if k not in self._last))
+        first: dict[bytes, int] = {}
+        for index, key in enumerate(keys):
+            first.setdefault(key, index)
+        new = [k for k in first if k not in self._last]
         if new:
-            rows = np.array([keys.index(k) for k in new])
+            rows = np.array([first[k] for k in new])
             nthread = None if isinstance(self.evaluator, SerialEvaluator) else 1
             context = ChunkContext(self.settings, nthread)
             slices = chunk_slices(len(rows), self.evaluator.n_workers)
@@ -310,6 +313,8 @@ class SpringNetExperiment:
         )
         settings = SpringNetSettings.from_values(extra)
         keep = _keep(extra.get("keep") or {})
+        if any(i >= config.population for chosen in keep.values() for i in chosen):
+            raise SinewsError(f"keep: indices must be below the population ({config.population})")
         genome_size = settings.encoding.size
         new_strategy(config.to_dict(), genome_size=genome_size, seed=config.seed)  # validate
         return store.create_run(
