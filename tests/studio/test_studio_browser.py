@@ -140,9 +140,11 @@ def test_dragging_a_node_pulls_the_dancer(page: Any, server: StudioServer, shots
     open_studio(page, server.url)
     page.check("#overlay")
     play_a_little(page)
+    page.click("#play")  # pause, so the node stays where it is drawn until it is grabbed
+    expect(page.locator("#play")).to_have_attribute("aria-pressed", "false")
     node, x, y = page.evaluate(NODE_ON_SCREEN, "pelvis")
     page.mouse.move(x, y)
-    page.mouse.down()
+    page.mouse.down()  # grabbing plays the song: the live dancer follows its clock
     page.mouse.move(x + 140, y - 40, steps=8)
     page.wait_for_function("studio.stage.live && studio.stage.live.frame > 0")
     start = page.evaluate("studio.stage.live.frame")
