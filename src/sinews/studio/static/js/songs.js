@@ -59,6 +59,7 @@ export class Songs {
       await this.app.openRun(branch);
       this.app.message(`Run ${branch.id}: generation ${branch.last} dances on to ${branch.song.name}.`);
     });
+    this.showRun(this.app.run); // after a failure, show the song still playing
   }
 
   async upload(file) {
