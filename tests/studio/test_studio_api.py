@@ -122,6 +122,11 @@ def test_a_dancer_on_stage_with_changed_genes_and_exports(client: TestClient) ->
     assert "attachment" in genome.headers["content-disposition"]
     assert genome.json()["body"]["lankiness"] == 0.2
     assert client.get(f"/api/dancers/{dancer['id']}/export.exe").status_code == 404
+    gif = client.get(f"/api/dancers/{dancer['id']}/export.gif")
+    assert gif.content[:6] == b"GIF89a" and gif.headers["content-type"] == "image/gif"
+    worker: Worker = client.app.state.worker  # type: ignore[attr-defined]
+    kinds = worker.call(lambda s: [m.kind for m in s.store.media(run)])
+    assert "gif" in kinds
     sheet = client.get(f"/api/runs/{run}/generations/0/sheet.png?frame=60")
     assert sheet.content[:8] == b"\x89PNG\r\n\x1a\n"
     lineage = client.get(f"/api/dancers/{dancer['id']}/lineage").json()

@@ -64,7 +64,7 @@ def genome_json(dancer: StageDancer) -> bytes:
 
 def dance_for(dancer: StageDancer, kind: str) -> Trajectory:
     """The motion a GIF or MP4 of the dancer shows (simulate it on the studio's worker)."""
-    return dancer.dance(GIF_SECONDS if kind == "gif" else None)
+    return dancer.dance(min(GIF_SECONDS, dancer.seconds) if kind == "gif" else None)
 
 
 def write_dancer(traj: Trajectory, dancer: StageDancer, kind: str, folder: Path) -> Path:
