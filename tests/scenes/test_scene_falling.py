@@ -66,6 +66,8 @@ def test_a_baby_comes_with_its_own_balloon_and_holds_a_parents_hand() -> None:
     play_until(scene, "baby", scene.romance.tuning.baby_delay + 0.5)
     baby = scene.dolls[2]
     assert scene.world.node_visible[baby.nodes].all()
+    assert scene.world.edge_visible[baby.edges].all()  # a whole little body, springs and all
+    assert np.all(scene.world.strength[baby.edges] == scene.world.layout.body.strength[baby.edges])
     assert len(scene.romance.link_tension(scene.world)) == 2  # the couple, and baby to parent
     hearts = [i for i, s in enumerate(scene.world.layout.node_shapes) if s == "heart"]
     assert sum(scene.world.node_visible[i] for i in hearts) == 2

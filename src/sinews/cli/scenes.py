@@ -29,7 +29,7 @@ def scene(
         bool,
         typer.Option(
             "--player/--no-player",
-            help="Scripted input: fling a kitten every 2 s, draw four preset scribbles, "
+            help="Scripted input: fling a kitten every 1.5 s, draw four preset scribbles, "
             "push the main doll right from 7 to 9 s. Without it the scene plays itself.",
         ),
     ] = True,

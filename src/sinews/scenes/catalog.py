@@ -39,7 +39,7 @@ def make_scene(name: str, rng: np.random.Generator, *, record_forces: bool = Fal
 def player(scene: Scene, rng: np.random.Generator) -> Script:
     """A scripted player for ``scene``.
 
-    Kittens: grab a node of a kitten every two seconds and drag it off-screen.
+    Kittens: grab a node of a kitten every 1.5 s and drag it off-screen.
     Scribbles: draw four preset curves, one every 1.5 s. Falling for You:
     push the main doll right from 7 to 9 s (enough to part a couple).
 

@@ -75,9 +75,9 @@ class KittenAvalanche(Scene):
         *,
         pool: int = 10,
         screen_size: tuple[float, float] = (4.0, 3.0),
-        first_interval: float = 1.6,
-        ramp: float = 0.93,
-        min_interval: float = 0.6,
+        first_interval: float = 1.2,
+        ramp: float = 0.92,
+        min_interval: float = 0.5,
         record_forces: bool = False,
     ) -> None:
         assembly = Assembly()

@@ -227,6 +227,7 @@ class Romance:
             nodes = baby.part.nodes
             if baby.born and self.is_single(c) and _gone(world, nodes.start, camera, far):
                 world.park(nodes, at=world.shape[nodes] + _PARK)
+                world.switch(baby.part.edges, on=False)
                 world.park(baby.balloon, at=_PARK)
                 world.switch(list(baby.strings.values()), on=False)
                 baby.born = False
@@ -287,6 +288,7 @@ class Romance:
         nodes = baby.part.nodes
         offset = world.positions[parent_hand] - world.shape[holding] + [0.0, -0.04]
         world.reveal(nodes, world.shape[nodes] + offset, world.velocities[parent_hand])
+        world.switch(baby.part.edges, on=True)
         self._link(world, holding, parent_hand)
         _raise(world, baby.balloon, baby.strings, (other,))
         baby.born = True

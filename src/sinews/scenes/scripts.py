@@ -101,14 +101,14 @@ class KittenFlinger:
         scene: KittenAvalanche,
         rng: np.random.Generator,
         *,
-        every: float = 2.0,
+        every: float = 1.5,
         drag_time: float = 0.5,
     ) -> None:
         self.scene = scene
         self.rng = rng
         self.every = every
         self.drag_time = drag_time
-        self._next = 2.0
+        self._next = 1.5
         self._turn = 0
         self._drag: tuple[float, npt.NDArray[np.float64], npt.NDArray[np.float64]] | None = None
 
