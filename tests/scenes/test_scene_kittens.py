@@ -70,9 +70,11 @@ def test_a_dragged_kitten_flies_off_screen_and_counts() -> None:
     assert not scene.world.failed
 
 
-def test_the_tail_gives_way_where_the_spine_carries_the_body() -> None:
-    strain = {part: drag(landed(3), part, (1.5, 1.0), 30) for part in ("back", "tail_tip")}
-    assert strain["tail_tip"] > 2.0 * strain["back"]
+@pytest.mark.parametrize("seed", [3, 5, 7])
+def test_the_tail_gives_way_where_the_spine_carries_the_body(seed: int) -> None:
+    # the same pull, the same kitten: only which node is held differs
+    strain = {part: drag(landed(seed), part, (1.5, 1.0), 30) for part in ("back", "tail_tip")}
+    assert strain["tail_tip"] > 1.5 * strain["back"]  # measured 1.9x to 4.5x
 
 
 @pytest.mark.parametrize("part", ["head", "near_ear", "tail_tip", "front_paw", "belly"])
