@@ -36,11 +36,6 @@ class Part:
     nodes: slice
     edges: slice
 
-    @property
-    def node_indices(self) -> npt.NDArray[np.int64]:
-        """(n,) indices of its nodes."""
-        return np.arange(self.nodes.start, self.nodes.stop)
-
 
 @dataclass(frozen=True, eq=False)
 class Layout:

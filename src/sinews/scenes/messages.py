@@ -113,7 +113,3 @@ class SceneRun:
     view_size: tuple[float, float]
     score: npt.NDArray[np.int64]
     events: tuple[tuple[int, SceneEvent], ...]
-
-    def count(self, kind: str) -> int:
-        """How many events of ``kind`` happened."""
-        return sum(1 for _, event in self.events if event.kind == kind)

@@ -84,7 +84,7 @@ class Scene(ABC):
         """The scene as it is now (arrays are copies)."""
         world = self.world
         return SceneFrame(
-            step=world.state.step,
+            step=world.frame,
             time=world.time,
             positions=world.positions.astype(np.float32),
             node_visible=world.node_visible.copy(),

@@ -102,6 +102,11 @@ class World:
         return self.params.dt * self.substeps
 
     @property
+    def frame(self) -> int:
+        """Frames simulated so far."""
+        return self.state.step // self.substeps
+
+    @property
     def time(self) -> float:
         """Seconds simulated so far."""
         return self.state.step * self.params.dt
