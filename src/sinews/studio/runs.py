@@ -14,7 +14,8 @@ scored; the page simulates them once, to show them.
 A run's history is never rewritten. Breeding from an earlier generation, or
 dancing on to another song, *branches*: a new run gets copies of the
 generations up to that point (genomes, lineage, picks and strategy
-checkpoints), so both histories stay and lineage crosses the branch point.
+checkpoints), so both histories stay and the branch's lineage reaches back to
+generation 0 through the copies.
 """
 
 from __future__ import annotations
