@@ -276,13 +276,14 @@ def record_picks(
     genome_size: int,
     scorer: Scorer | None = None,
     spec: FitnessSpec | None = None,
+    mutation: float | None = None,
 ) -> GenerationSummary:
     """Record a person's picks in ``generation`` and breed the next one (one transaction).
 
     The studio's hook for interactive (and hybrid) runs: the picks are told
     to the strategy restored from ``generation``'s checkpoint, the next
-    generation is asked for, scored if a scorer is given, and stored with
-    the picked flags.
+    generation is asked for (with mutation strength ``mutation`` when given),
+    scored if a scorer is given, and stored with the picked flags.
 
     Raises:
         SinewsError: ``generation`` is not the run's last one (someone else
@@ -292,4 +293,6 @@ def record_picks(
     if generation != last:
         raise SinewsError(f"run {run_id}: picks are for generation {last}, not {generation}")
     strategy = restore_strategy(store, run_id, genome_size=genome_size)
+    if mutation is not None:
+        strategy.variation = dataclasses.replace(strategy.variation, mutation_sigma=mutation)
     return advance(store, run_id, scorer=scorer, spec=spec, strategy=strategy, picks=picks)

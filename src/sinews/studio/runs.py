@@ -20,7 +20,6 @@ generation 0 through the copies.
 
 from __future__ import annotations
 
-import dataclasses
 import secrets
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -37,7 +36,7 @@ from sinews.experiments.dancer_evolution import (
     dancer_config,
     run_music,
 )
-from sinews.experiments.evolution import advance, new_strategy, restore_strategy
+from sinews.experiments.evolution import advance, new_strategy, record_picks
 from sinews.experiments.run_config import EvolutionConfig
 from sinews.music import MusicFeatures, analyse_file
 from sinews.store import GenerationRecord, Individual, RunInfo, RunStore
@@ -187,10 +186,8 @@ class StudioRuns:
             raise StudioError(f"mutation must be in [0, {MAX_MUTATION}], got {mutation}")
         if generation < run.last:
             run_id = self.branch(run_id, generation)
-        strategy = restore_strategy(self.store, run_id, genome_size=DancerGenome.SIZE)
-        strategy.variation = dataclasses.replace(strategy.variation, mutation_sigma=mutation)
-        summary = advance(
-            self.store, run_id, scorer=None, spec=None, strategy=strategy, picks=chosen
+        summary = record_picks(
+            self.store, run_id, generation, chosen, genome_size=DancerGenome.SIZE, mutation=mutation
         )
         return run_id, summary.generation
 
