@@ -54,7 +54,7 @@ Size = int | tuple[int, int]
 _SPHERE, _CAPSULE, _ELLIPSOID, _CYLINDER, _BOX = 2, 3, 4, 5, 6  # mjtGeom values
 _START_COLOR: Color = (46, 139, 87)
 _DISTANCE_COLOR: Color = (200, 60, 40)
-_FOLLOW_AFTER = 3.0  # follow the figure once its path is this many times its size
+_FOLLOW_AFTER = 3.0  # follow a figure whose path is this many times its size
 _PANEL_SHARE = 0.22  # of the canvas height
 _GROUND_SHARE = 0.2  # of the figure area, below the ground line
 
@@ -208,27 +208,36 @@ class FigurePainter:
         return self.traj.n_frames
 
     def _camera(self, boxes: FloatArray, still: bool) -> list[View]:
-        """One view per frame: fixed on the whole motion, or following the figure."""
-        area_h = self.height - self._panel_px
-        ground_px = _GROUND_SHARE * area_h
-        size = max(float((boxes[:, 2] - boxes[:, 0]).max()), float((boxes[:, 3]).max()), 0.05)
-        x_lo = min(float(boxes[:, 0].min()), float(self.root_x[0])) - 0.15 * size
-        x_hi = max(float(boxes[:, 2].max()), float(self.root_x[0])) + 0.15 * size
-        y_top = float(boxes[:, 3].max()) + 0.15 * size
-        y_low = min(float(boxes[:, 1].min()), 0.0)
-        follow = not still and x_hi - x_lo > _FOLLOW_AFTER * size
-        span = _FOLLOW_AFTER * size if follow else x_hi - x_lo
-        scale = min(self.width / span, (area_h - ground_px - 4.0) / max(y_top - y_low, 1e-6))
-        top = y_low + (self.height - ground_px) / scale  # the ground band at the bottom
-        if not follow:
+        """One view per frame: fixed on the whole motion, or following the figure.
+
+        The figure's size is the largest side of its own box over the frames. A
+        path longer or higher than `_FOLLOW_AFTER` sizes is followed (smoothed
+        over half a second) in a window that many sizes wide and at most half
+        as high, the ground at the bottom unless the figure flies above it.
+        """
+        usable = self.height - self._panel_px - _GROUND_SHARE * (self.height - self._panel_px)
+        ground_row = self.height - _GROUND_SHARE * (self.height - self._panel_px)
+        size = max(float((boxes[:, 2:] - boxes[:, :2]).max()), 0.05)
+        pad = 0.15 * size
+        x_lo = min(float(boxes[:, 0].min()), float(self.root_x[0])) - pad
+        x_hi = max(float(boxes[:, 2].max()), float(self.root_x[0])) + pad
+        y_low, y_top = min(float(boxes[:, 1].min()), 0.0), float(boxes[:, 3].max()) + pad
+        reach = _FOLLOW_AFTER * size
+        if still or (x_hi - x_lo <= reach and y_top - y_low <= reach):
+            scale = min(self.width / (x_hi - x_lo), (usable - 4.0) / (y_top - y_low))
             left = 0.5 * (x_lo + x_hi) - 0.5 * self.width / scale
-            return [View(self.width, self.height, scale, left, top)] * self.n_frames
-        centers = 0.5 * (boxes[:, 0] + boxes[:, 2])
-        window = max(1, round(self.traj.fps / 2))  # smooth over half a second
-        kernel = np.ones(2 * window + 1) / (2 * window + 1)
-        smooth = np.convolve(np.pad(centers, window, mode="edge"), kernel, mode="valid")
+            view = View(self.width, self.height, scale, left, y_low + ground_row / scale)
+            return [view] * self.n_frames
+        scale = min(self.width / reach, (usable - 4.0) / min(y_top - y_low, 0.5 * reach))
+        seen = (usable - 4.0) / scale  # world height above the ground band
+        x_mid = _smooth(0.5 * (boxes[:, 0] + boxes[:, 2]), self.traj.fps)
+        y_mid = _smooth(0.5 * (boxes[:, 1] + boxes[:, 3]), self.traj.fps)
+        bottom = np.maximum(y_low, y_mid - 0.5 * seen)
         half = 0.5 * self.width / scale
-        return [View(self.width, self.height, scale, c - half, top) for c in smooth.tolist()]
+        return [
+            View(self.width, self.height, scale, x - half, b + ground_row / scale)
+            for x, b in zip(x_mid.tolist(), bottom.tolist(), strict=True)
+        ]
 
     def draw(self, canvas: Canvas, frames: int | Sequence[int]) -> None:
         """Draw one frame, or several as a strobe (earlier ones fainter, the last on top).
@@ -334,6 +343,13 @@ class FigurePainter:
         canvas.text((self.width - 0.4 * self._text_px, self._panel_px + 0.4 * self._text_px),
                     f"{frame / self.traj.fps:.1f} s", self.style.text_color,
                     size=self._text_px, anchor="rt", halo=self.style.background)  # fmt: skip
+
+
+def _smooth(values: FloatArray, fps: float) -> FloatArray:
+    """A running mean over half a second, edges held."""
+    window = max(1, round(fps / 4))
+    kernel = np.ones(2 * window + 1) / (2 * window + 1)
+    return np.convolve(np.pad(values, window, mode="edge"), kernel, mode="valid")
 
 
 def _color(rgb: FloatArray) -> Color:
