@@ -27,6 +27,7 @@ from starlette.types import ASGIApp, Receive, Scope, Send
 
 from sinews.errors import SinewsError
 from sinews.studio.api import routes
+from sinews.studio.scene_socket import scene_routes
 from sinews.studio.service import Worker
 from sinews.studio.validate import RequestError
 
@@ -40,6 +41,10 @@ _log = logging.getLogger(__name__)
 
 async def _page(request: Request) -> FileResponse:
     return FileResponse(STATIC / "index.html", headers={"Cache-Control": "no-cache"})
+
+
+async def _scenes_page(request: Request) -> FileResponse:
+    return FileResponse(STATIC / "scenes.html", headers={"Cache-Control": "no-cache"})
 
 
 class _SameOrigin:
@@ -104,7 +109,9 @@ def create_app(worker: Worker, *, host: str = "127.0.0.1") -> Starlette:
     app = Starlette(
         routes=[
             Route("/", _page),
+            Route("/scenes", _scenes_page),
             *routes,
+            *scene_routes(),
             Mount("/static", StaticFiles(directory=STATIC), name="static"),
         ],
         middleware=[

@@ -15,7 +15,6 @@ socket stays open.
 
 from __future__ import annotations
 
-import json
 from typing import Any
 
 import numpy as np
@@ -25,7 +24,7 @@ from sinews.errors import SinewsError
 from sinews.studio.live import Grab, LiveDancer
 from sinews.studio.motion import SLIDER_GENES
 from sinews.studio.service import Worker
-from sinews.studio.validate import RequestError, number, whole
+from sinews.studio.validate import RequestError, json_object, number, whole
 
 __all__ = ["live"]
 
@@ -41,7 +40,7 @@ async def live(socket: WebSocket) -> None:
         while True:
             message = await socket.receive_text()
             try:
-                await session.answer(socket, _object(message))
+                await session.answer(socket, json_object(message))
             except SinewsError as exc:
                 await socket.send_json({"op": "error", "error": str(exc)})
     except WebSocketDisconnect:
@@ -68,16 +67,6 @@ class _Session:
             await socket.send_bytes(await self.worker.run(lambda s: _step(dancer, frame, grab)))
         else:
             raise RequestError("op must be 'start' or 'step'")
-
-
-def _object(message: str) -> dict[str, Any]:
-    try:
-        request = json.loads(message)
-    except json.JSONDecodeError:
-        raise RequestError("messages must be JSON") from None
-    if not isinstance(request, dict):
-        raise RequestError("messages must be JSON objects")
-    return request
 
 
 async def _start(worker: Worker, request: dict[str, Any]) -> LiveDancer:

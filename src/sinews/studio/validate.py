@@ -15,8 +15,11 @@ __all__ = [
     "MAX_JSON_BYTES",
     "RequestError",
     "body_fields",
+    "flag",
+    "json_object",
     "number",
     "parse_whole",
+    "point",
     "unit_values",
     "whole",
 ]
@@ -64,6 +67,23 @@ async def body_fields(
     return body
 
 
+def json_object(message: str) -> dict[str, Any]:
+    """A websocket message: a JSON object of at most `MAX_JSON_BYTES` characters.
+
+    Raises:
+        RequestError: too long, not JSON, or not an object.
+    """
+    if len(message) > MAX_JSON_BYTES:
+        raise RequestError(f"messages must be shorter than {MAX_JSON_BYTES // 1024} KB")
+    try:
+        request = json.loads(message)
+    except json.JSONDecodeError:
+        raise RequestError("messages must be JSON") from None
+    if not isinstance(request, dict):
+        raise RequestError("messages must be JSON objects")
+    return request
+
+
 def number(value: object, name: str, lo: float, hi: float) -> float:
     """A JSON number in [lo, hi]."""
     if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
@@ -80,6 +100,21 @@ def whole(value: object, name: str, lo: int, hi: int) -> int:
     if not lo <= value <= hi:
         raise RequestError(f"{name} must be in [{lo}, {hi}], got {value}")
     return value
+
+
+def flag(value: object, name: str) -> bool:
+    """A JSON boolean."""
+    if not isinstance(value, bool):
+        raise RequestError(f"{name} must be true or false")
+    return value
+
+
+def point(value: object, name: str, limit: float) -> tuple[float, float]:
+    """A JSON pair [x, y] of numbers, each within ±``limit``."""
+    if not isinstance(value, list) or len(value) != 2:
+        raise RequestError(f"{name} must be a pair [x, y]")
+    x, y = value
+    return (number(x, f"{name} x", -limit, limit), number(y, f"{name} y", -limit, limit))
 
 
 def parse_whole(text: str, name: str, lo: int, hi: int) -> int:

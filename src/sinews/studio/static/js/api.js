@@ -1,4 +1,5 @@
-// Talking to the studio server: JSON, binary packs and downloads, with one-line errors.
+// Talking to the studio server: JSON, binary packs, downloads and websockets, with
+// one-line errors.
 
 import { decodePack } from "./pack.js";
 
@@ -79,4 +80,21 @@ export function geneQuery(genes) {
   for (const [name, value] of Object.entries(genes)) params.set(name, value.toFixed(3));
   const text = params.toString();
   return text ? `?${text}` : "";
+}
+
+/**
+ * Open a websocket to ``path`` on this server (binary messages as ArrayBuffers).
+ * @param {string} path e.g. "/api/live"
+ * @param {{message: function(string|ArrayBuffer), close: function(CloseEvent)}} on handlers
+ * @returns {Promise<WebSocket>} resolves once open
+ */
+export function openSocket(path, on) {
+  return new Promise((resolve, reject) => {
+    const socket = new WebSocket(`${location.protocol === "https:" ? "wss" : "ws"}://${location.host}${path}`);
+    socket.binaryType = "arraybuffer";
+    socket.onopen = () => resolve(socket);
+    socket.onerror = () => reject(new StudioError("the live link to the server failed"));
+    socket.onclose = (event) => on.close(event);
+    socket.onmessage = (event) => on.message(event.data);
+  });
 }

@@ -1,7 +1,10 @@
-// Drawing dancers on a canvas, in the look of sinews.render's FramePainter:
-// discs for nodes with a darker rim, tendons in the darkened mean colour of
-// their ends, a ground line, and the debug overlay (labels, force arrows,
-// rings on nodes whose responder fires).
+// Drawing bodies on a canvas, in the look of sinews.render's FramePainter:
+// discs (or hearts, or spikes) for nodes with a darker rim, tendons in the
+// darkened mean colour of their ends, a ground line, and the debug overlay
+// (labels, force arrows, rings on nodes whose responder fires). The dancer
+// pages and the scene pages share these.
+
+import { heartPath, spikePath } from "./shapes.js";
 
 const BACKGROUND = "rgb(250,248,243)";
 const GROUND = "rgb(232,228,219)";
@@ -10,7 +13,7 @@ const TEXT = "rgb(40,40,40)";
 const ARROW = "rgb(214,39,40)";
 const RING = "rgb(255,170,0)";
 
-const rgb = (c, f = 1) => `rgb(${Math.round(c[0] * f)},${Math.round(c[1] * f)},${Math.round(c[2] * f)})`;
+export const rgb = (c, f = 1) => `rgb(${Math.round(c[0] * f)},${Math.round(c[1] * f)},${Math.round(c[2] * f)})`;
 
 /** Colours of one dancer, worked out once. */
 export function paints(dancer) {
@@ -100,11 +103,12 @@ export function view(canvas, room, x) {
 
 export const toPx = (v, x, y) => [(x - v.left) * v.scale, (v.top - y) * v.scale];
 
-function drawFloor(g, v) {
+/** The ground under y = 0: its colour, the floor line and marks every half metre. */
+export function drawFloor(g, v, ground = GROUND, floor = FLOOR) {
   const [, y] = toPx(v, 0, 0);
-  g.fillStyle = GROUND;
+  g.fillStyle = ground;
   g.fillRect(0, y, v.width, v.height - y);
-  g.strokeStyle = FLOOR;
+  g.strokeStyle = floor;
   g.lineWidth = Math.max(1, 0.005 * Math.min(v.width, v.height));
   g.beginPath();
   g.moveTo(0, y);
@@ -117,6 +121,53 @@ function drawFloor(g, v) {
     g.lineTo(px, y + 0.05 * v.scale);
   }
   g.stroke();
+}
+
+/** Canvas pixels [x, y] of ``count`` nodes at ``xy`` (x0, y0, x1, y1, … metres). */
+export function pixels(v, xy, count) {
+  const px = new Array(count);
+  for (let i = 0; i < count; i++) px[i] = toPx(v, xy[2 * i], xy[2 * i + 1]);
+  return px;
+}
+
+/**
+ * Draw a body's springs, then its nodes: discs, or hearts and spikes where ``figure.shapes``
+ * says (spikes need ``figure.anchors`` from spikeAnchors()).
+ * @param {object} figure edges, radii (and shapes, anchors)
+ * @param {object} paint from paints()
+ * @param {Array} px node pixels from pixels()
+ * @param {object} [shown] {nodes, edges}: visibility flags (drawn where non-zero); all if absent
+ * @param {number} [edgeWidth] spring thickness, fraction of the smaller canvas side
+ */
+export function drawFigure(g, v, figure, paint, px, shown, edgeWidth = 0.005) {
+  const side = Math.min(v.width, v.height);
+  const visible = (i) => !shown || shown.nodes[i];
+  g.lineCap = "round";
+  g.lineWidth = Math.max(1, edgeWidth * side);
+  figure.edges.forEach(([i, j], e) => {
+    if (shown && !(shown.edges[e] && shown.nodes[i] && shown.nodes[j])) return;
+    g.strokeStyle = paint.edge[e];
+    g.beginPath();
+    g.moveTo(...px[i]);
+    g.lineTo(...px[j]);
+    g.stroke();
+  });
+  g.lineWidth = Math.max(0.75, 0.4 * edgeWidth * side);
+  figure.radii.forEach((r, i) => {
+    if (!visible(i)) return;
+    const radius = Math.max(2, r * v.scale);
+    const shape = figure.shapes ? figure.shapes[i] : "disc";
+    if (shape === "heart") heartPath(g, px[i][0], px[i][1], radius);
+    else if (shape === "spike") spikePath(g, px[i], px[figure.anchors[i]], radius);
+    else {
+      g.beginPath();
+      g.arc(px[i][0], px[i][1], radius, 0, 2 * Math.PI);
+    }
+    g.fillStyle = paint.node[i];
+    g.fill();
+    g.strokeStyle = paint.rim[i];
+    g.stroke();
+  });
 }
 
 /**
@@ -132,30 +183,13 @@ export function drawDancer(g, v, dancer, paint, xy, overlay) {
   g.fillStyle = BACKGROUND;
   g.fillRect(0, 0, v.width, v.height);
   drawFloor(g, v);
-  const side = Math.min(v.width, v.height);
-  const px = dancer.radii.map((_, i) => toPx(v, xy[2 * i], xy[2 * i + 1]));
-  g.lineCap = "round";
-  g.lineWidth = Math.max(1, 0.005 * side);
-  dancer.edges.forEach(([i, j], e) => {
-    g.strokeStyle = paint.edge[e];
-    g.beginPath();
-    g.moveTo(...px[i]);
-    g.lineTo(...px[j]);
-    g.stroke();
-  });
-  g.lineWidth = Math.max(0.75, 0.002 * side);
-  dancer.radii.forEach((r, i) => {
-    g.beginPath();
-    g.arc(px[i][0], px[i][1], Math.max(2, r * v.scale), 0, 2 * Math.PI);
-    g.fillStyle = paint.node[i];
-    g.fill();
-    g.strokeStyle = paint.rim[i];
-    g.stroke();
-  });
-  if (overlay) drawOverlay(g, v, dancer, px, overlay, side);
+  const px = pixels(v, xy, dancer.radii.length);
+  drawFigure(g, v, dancer, paint, px);
+  if (overlay) drawOverlay(g, v, dancer, px, overlay);
 }
 
-function drawOverlay(g, v, dancer, px, overlay, side) {
+function drawOverlay(g, v, dancer, px, overlay) {
+  const side = Math.min(v.width, v.height);
   g.lineWidth = 2;
   g.strokeStyle = RING;
   for (const i of overlay.fired) {
@@ -164,35 +198,57 @@ function drawOverlay(g, v, dancer, px, overlay, side) {
     g.arc(px[i][0], px[i][1], r + Math.max(3, 0.35 * r), 0, 2 * Math.PI);
     g.stroke();
   }
-  if (overlay.forces) {
-    const longest = 0.24 * side;
-    g.strokeStyle = ARROW;
-    g.fillStyle = ARROW;
-    g.lineWidth = Math.max(1, 0.004 * side);
-    px.forEach(([x, y], i) => {
-      let dx = overlay.forces[2 * i] * overlay.forceScale;
-      let dy = -overlay.forces[2 * i + 1] * overlay.forceScale;
-      const length = Math.hypot(dx, dy);
-      if (!(length >= 1.5)) return;
-      const shrink = Math.min(1, longest / length);
-      dx *= shrink;
-      dy *= shrink;
-      arrow(g, x, y, x + dx, y + dy, 4 + 0.01 * side);
-    });
-  }
-  g.font = `${Math.max(9, Math.round(0.024 * side))}px sans-serif`;
-  g.textBaseline = "middle";
-  const middle = px.reduce((s, p) => s + p[0], 0) / px.length;
+  if (overlay.forces) drawForces(g, px, overlay.forces, overlay.forceScale, side);
+  drawLabels(g, v, px, overlay.names, dancer.radii);
+}
+
+/**
+ * Force arrows from the nodes (Fig. 2 of the paper), ``scale`` pixels per newton, clipped.
+ * @param {Float32Array} forces (fx0, fy0, …) newtons
+ * @param {Uint8Array} [visible] node visibility; all if absent
+ */
+export function drawForces(g, px, forces, scale, side, visible) {
+  const longest = 0.24 * side;
+  g.strokeStyle = ARROW;
+  g.fillStyle = ARROW;
+  g.lineWidth = Math.max(1, 0.004 * side);
   px.forEach(([x, y], i) => {
+    if (visible && !visible[i]) return;
+    let dx = forces[2 * i] * scale;
+    let dy = -forces[2 * i + 1] * scale;
+    const length = Math.hypot(dx, dy);
+    if (!(length >= 1.5)) return;
+    const shrink = Math.min(1, longest / length);
+    dx *= shrink;
+    dy *= shrink;
+    arrow(g, x, y, x + dx, y + dy, 4 + 0.01 * side);
+  });
+}
+
+/**
+ * Node names beside their nodes, on the side away from the middle of what is shown.
+ * @param {object} [options] visible (node visibility flags; all if absent), ink ({text,
+ *   halo} colours), size (font size, fraction of the smaller canvas side)
+ */
+export function drawLabels(g, v, px, names, radii, options = {}) {
+  const { visible, ink = { text: TEXT, halo: BACKGROUND }, size = 0.024 } = options;
+  const side = Math.min(v.width, v.height);
+  const shown = px.map((_, i) => i).filter((i) => !visible || visible[i]);
+  if (!shown.length) return;
+  g.font = `${Math.max(9, Math.round(size * side))}px sans-serif`;
+  g.textBaseline = "middle";
+  const middle = shown.reduce((sum, i) => sum + px[i][0], 0) / shown.length;
+  for (const i of shown) {
+    const [x, y] = px[i];
     const right = x >= middle;
-    const gap = Math.max(2, dancer.radii[i] * v.scale) + 3;
+    const gap = Math.max(2, radii[i] * v.scale) + 3;
     g.textAlign = right ? "left" : "right";
     g.lineWidth = 3;
-    g.strokeStyle = BACKGROUND;
-    g.strokeText(overlay.names[i], right ? x + gap : x - gap, y);
-    g.fillStyle = TEXT;
-    g.fillText(overlay.names[i], right ? x + gap : x - gap, y);
-  });
+    g.strokeStyle = ink.halo;
+    g.strokeText(names[i], right ? x + gap : x - gap, y);
+    g.fillStyle = ink.text;
+    g.fillText(names[i], right ? x + gap : x - gap, y);
+  }
 }
 
 function arrow(g, x0, y0, x1, y1, head) {

@@ -1,6 +1,8 @@
 // The live link for dragging: a websocket on which the server steps the stage
 // dancer to the clock's frame, pulling the grabbed node toward the mouse.
 
+import { openSocket } from "./api.js";
+
 export class LiveLink {
   /** @param {function(string)} onError shows a one-line error */
   constructor(onError) {
@@ -33,20 +35,15 @@ export class LiveLink {
 
   open() {
     if (this.socket && this.socket.readyState === WebSocket.OPEN) return Promise.resolve(this.socket);
-    return new Promise((resolve, reject) => {
-      const url = `${location.protocol === "https:" ? "wss" : "ws"}://${location.host}/api/live`;
-      const socket = new WebSocket(url);
-      socket.binaryType = "arraybuffer";
-      socket.onopen = () => resolve(socket);
-      socket.onerror = () => reject(new Error("the live link to the server failed"));
-      socket.onclose = () => {
+    const opening = openSocket("/api/live", {
+      message: (data) => this.receive(data),
+      close: () => {
         this.socket = null;
         this.key = null;
         this.ready = null;
-      };
-      socket.onmessage = (event) => this.receive(event.data);
-      this.socket = socket;
+      },
     });
+    return opening.then((socket) => (this.socket = socket));
   }
 
   receive(data) {
