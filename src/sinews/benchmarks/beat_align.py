@@ -16,13 +16,14 @@ import numpy as np
 from sinews.benchmarks._measure import Measurement
 from sinews.experiments.dancers import dance, random_genomes
 from sinews.music import DEMO_NAMES, analyse_file, beat_align_score, write_demo
+from sinews.trajectory import Trajectory
 
 __all__ = ["run"]
 
 DANCERS = 16
 
 
-def _mean_score(trajectories: list, beats: np.ndarray) -> float:  # type: ignore[type-arg]
+def _mean_score(trajectories: list[Trajectory], beats: np.ndarray) -> float:
     return float(np.mean([beat_align_score(t.positions, t.fps, beats) for t in trajectories]))
 
 
@@ -35,9 +36,9 @@ def run(quick: bool = False) -> list[Measurement]:
         for name in DEMO_NAMES:
             music = analyse_file(write_demo(name, Path(tmp) / f"{name}.wav"), cache_dir=tmp)
             seconds = min(music.duration, 15.0 if quick else music.duration)
-            kwargs = {"music": music, "seeds": range(count)}
-            on = dance(genomes, seconds, **kwargs)  # type: ignore[arg-type]
-            off = dance(genomes, seconds, responders=False, **kwargs)  # type: ignore[arg-type]
+            seeds = list(range(count))
+            on = dance(genomes, seconds, music=music, seeds=seeds)
+            off = dance(genomes, seconds, music=music, responders=False, seeds=seeds)
             results.append(
                 Measurement(
                     f"{count} dancers, demo '{name}' ({music.tempo_bpm:.0f} BPM, {seconds:.0f} s)",
