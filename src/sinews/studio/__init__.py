@@ -8,6 +8,8 @@ a person picks favourites and breeds the next generation. Layout:
 - `runs` — interactive dancer runs in the run store (create, breed, branch, tempo);
 - `motion` — generations and stage dancers danced and packed for the page;
 - `live` and `live_socket` — the stage dancer stepped live while a node is dragged;
+- `scene_live` and `scene_socket` — the seed-000 scenes played live at 60 fps (the
+  ``/scenes`` page);
 - `songs` — demo and uploaded songs, known by generated ids;
 - `exports` — genome JSON, GIF, MP4 with sound, contact sheets;
 - `pack` — the binary format motion travels in;
