@@ -173,6 +173,7 @@ def test_the_debug_overlay_draws_labels_and_forces(
     page.wait_for_function(f"scenes.painter.canvas.toDataURL() !== {plain!r}")
     assert page.evaluate(f"{LATEST}.step") == step  # paused: only the overlay changed
     assert page.evaluate(INK, [214, 39, 40]) > arrows + 200
+    expect(page.locator("#stats")).to_contain_text("paused")
     page.screenshot(path=shots / "scenes-overlay.png")
     page.uncheck("#overlay")
     page.wait_for_function(f"{LATEST}.forces === null")

@@ -100,8 +100,11 @@ def test_messages_are_checked_and_the_socket_stays_open(client: TestClient) -> N
     with client.websocket_connect(SCENES + "kittens") as ws:
         start(ws)
         good = {"op": "input", "seq": 1, "push": 0.0, "pointer": [0.0, 1.0], "pressed": True}
+        ws.send_bytes(b"\x00\x01")
+        assert "JSON text" in ws.receive_json()["error"]
         for text, error in [
             ("nonsense", "must be JSON"),
+            ('{"op": "ping", "t": "now"}', "t must be a number"),
             ("[1]", "JSON objects"),
             ('{"op": "fly"}', "op must be one of"),
             (json.dumps({**good, "push": 2}), "push must be in [-1, 1]"),

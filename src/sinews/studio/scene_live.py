@@ -183,6 +183,7 @@ class LiveScene:
             ],
             dtype="<f4",
         )
+        assert head.size == HEAD_FLOATS
         parts = [head.tobytes(), frame.positions.astype("<f4").tobytes()]
         if with_forces and frame.forces is not None:
             parts.append(np.nan_to_num(frame.forces).astype("<f4").tobytes())

@@ -14,7 +14,8 @@ page's messages are JSON objects:
 - ``{"op": "reroll", "scribble": ID}`` — new tendons for that scribble;
 - ``{"op": "overlay", "on": B}`` — frames carry forces (debug overlay);
 - ``{"op": "pause", "on": B}`` — stop or resume stepping;
-- ``{"op": "ping", "t": T}`` — answered ``{"op": "pong", "t": T}`` at once.
+- ``{"op": "ping", "t": T}`` — answered ``{"op": "pong", "t": T}`` at once
+  (``T`` a number, the page's clock in milliseconds).
 
 The server also sends ``{"op": "events", "step": K, "events": [[kind, [ids]], …],
 "scribbles": {id: [nodes]}}`` when something happened, and ``{"op": "stats",
@@ -34,7 +35,7 @@ from collections.abc import Callable, Coroutine
 from typing import Any
 
 from starlette.routing import BaseRoute, WebSocketRoute
-from starlette.websockets import WebSocket, WebSocketDisconnect, WebSocketState
+from starlette.websockets import WebSocket, WebSocketState
 
 from sinews.errors import SinewsError
 from sinews.scenes import SCENE_NAMES, SceneInput
@@ -97,13 +98,15 @@ class _Session:
         """Answer messages until the page goes away."""
         try:
             while True:
-                message = await self.socket.receive_text()
+                message = await self.socket.receive()
+                if message["type"] == "websocket.disconnect":
+                    break
                 try:
-                    await self.answer(json_object(message))
+                    if message.get("text") is None:
+                        raise RequestError("messages must be JSON text")
+                    await self.answer(json_object(message["text"]))
                 except SinewsError as exc:
                     await self.send(self.socket.send_json, {"op": "error", "error": str(exc)})
-        except WebSocketDisconnect:
-            pass
         finally:
             if self.ticker is not None:
                 self.ticker.cancel()
@@ -120,7 +123,8 @@ class _Session:
         if op == "start":
             await self.start(whole(request.get("seed"), "seed", 0, 2**32 - 1))
         elif op == "ping":
-            await self.send(self.socket.send_json, {"op": "pong", "t": request.get("t")})
+            t = number(request.get("t"), "t", 0.0, 1e12)
+            await self.send(self.socket.send_json, {"op": "pong", "t": t})
         elif self.scene is None:
             raise RequestError("send a start message first")
         elif op == "input":
@@ -153,6 +157,7 @@ class _Session:
         self.ticker = asyncio.create_task(self.tick(scene))
 
     def take_input(self, request: dict[str, Any]) -> None:
+        seq = whole(request.get("seq"), "seq", 0, 2**24)
         pointer = request.get("pointer")
         pressed = flag(request.get("pressed"), "pressed")
         self.held = SceneInput(
@@ -161,16 +166,17 @@ class _Session:
             pressed=pressed,
         )
         self.pressed_once |= pressed
-        self.seq = whole(request.get("seq"), "seq", 0, 2**24)
+        self.seq = seq
 
     def take_stroke(self, request: dict[str, Any]) -> None:
         if self.name != "scribbles":
             raise RequestError("only Scribbles takes drawings")
+        seq = whole(request.get("seq"), "seq", 0, 2**24)
         points = request.get("points")
         if not isinstance(points, list) or not 2 <= len(points) <= MAX_STROKE_POINTS:
             raise RequestError(f"points must be a list of 2 to {MAX_STROKE_POINTS} [x, y] pairs")
         self.strokes.append(tuple(point(p, "point", _METRES) for p in points))
-        self.seq = whole(request.get("seq"), "seq", 0, 2**24)
+        self.seq = seq
 
     async def reroll(self, scribble: int) -> None:
         scene = self.scene

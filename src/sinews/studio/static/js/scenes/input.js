@@ -14,9 +14,10 @@ export class SceneInput {
   /**
    * @param {HTMLCanvasElement} canvas
    * @param {import("./painter.js").ScenePainter} painter
-   * @param {{draws: function(): boolean, visible: function(): Uint8Array,
+   * @param {{draws: function(): boolean, visible: function(): ?Uint8Array,
    *   grabbed: function(number), stroke: function(Array)}} hooks whether a press away from
-   *   nodes draws; node visibility now; a node was pressed; a finished stroke (metres)
+   *   nodes draws; visibility of the nodes as last drawn (null: nothing drawn yet); a node
+   *   was pressed; a finished stroke (metres)
    */
   constructor(canvas, painter, hooks) {
     this.canvas = canvas;
@@ -39,7 +40,7 @@ export class SceneInput {
   }
 
   key(event, down) {
-    if (!(event.key in this.keys) || event.target.closest("input, select")) return;
+    if (!(event.key in this.keys)) return;
     event.preventDefault();
     this.keys[event.key] = down;
   }
@@ -54,11 +55,12 @@ export class SceneInput {
   }
 
   press(event) {
-    if (!this.painter.v || event.button !== 0) return;
+    const visible = this.hooks.visible();
+    if (!visible || event.button !== 0) return;
     event.preventDefault();
     this.canvas.setPointerCapture(event.pointerId);
     const at = this.pixels(event);
-    const node = this.painter.nodeAt(at, this.hooks.visible(), GRAB_PIXELS);
+    const node = this.painter.nodeAt(at, visible, GRAB_PIXELS);
     if (node === null && this.hooks.draws()) {
       this.stroke = [at];
       return;

@@ -43,7 +43,7 @@ class ScenePage {
     });
     this.input = new SceneInput(canvas, this.painter, {
       draws: () => this.name === "scribbles",
-      visible: () => this.link.frames.latest.nodeVisible,
+      visible: () => this.shown && this.shown.nodeVisible,
       grabbed: (node) => this.selectAt(node),
       stroke: (points) => this.link.input("stroke", { points }),
     });
@@ -153,7 +153,8 @@ class ScenePage {
     const ms = (value) => (Number.isFinite(value) ? value.toFixed(value < 10 ? 2 : 0) : "–");
     $("stats").textContent =
       `server: step ${ms(s.step)} ms (max ${ms(s.stepMax)}) + pack ${ms(s.pack)} ms` +
-      ` · ping ${ms(s.ping)} ms · input→frame ${ms(s.input)} ms · ${ms(s.fps)} frames/s`;
+      ` · ping ${ms(s.ping)} ms · input→frame ${ms(s.input)} ms · ` +
+      (this.shown.paused ? "paused" : `${ms(s.fps)} frames/s`);
   }
 }
 
