@@ -6,7 +6,7 @@ step (`pack`), little-endian:
 
 - 8 float32: frame number, score, camera x, camera y (metres), the last
   input message the frame has seen (its ``seq``), the grabbed node (-1: none),
-  the scene's gauge (see `GAUGES`; NaN: none), flags (+1: forces follow,
+  the scene's gauge (see `LiveScene.gauge`; NaN: none), flags (+1: forces follow,
   +2: paused, the scene will not move until it is resumed);
 - N × 2 float32 node positions, metres;
 - N × 2 float32 net forces, newtons (only with the debug overlay);
@@ -37,15 +37,10 @@ from sinews.scenes import (
 )
 from sinews.scenes.video import LOOKS
 
-__all__ = ["GAUGES", "HEAD_FLOATS", "Costs", "LiveScene"]
+__all__ = ["HEAD_FLOATS", "Costs", "LiveScene"]
 
 HEAD_FLOATS = 8
 """float32 values before the positions in a packed frame."""
-GAUGES = {
-    "falling-for-you": "strongest held hand, share of what breaks it",
-    "kittens": "seconds between kittens",
-}
-"""What each scene's gauge shows (scenes not listed have none)."""
 
 
 @dataclass
@@ -98,7 +93,6 @@ class LiveScene:
         return {
             "scene": scene.name,
             "scoreName": scene.score_name,
-            "gaugeName": GAUGES.get(scene.name),
             "viewSize": list(scene.view_size),
             "fps": 1.0 / scene.world.frame_dt,
             "names": list(body.names),
@@ -196,8 +190,11 @@ class LiveScene:
         return packed
 
     def gauge(self) -> float:
-        """Kittens: seconds between arrivals; Falling for You: the strongest link's pull as a
-        share of the pull that breaks it; otherwise NaN."""
+        """The scene's gauge, NaN if it has none.
+
+        Kittens: seconds between arrivals (the difficulty ramp). Falling for You:
+        the strongest held hand's pull as a share of the pull that breaks it.
+        """
         scene = self.scene
         if isinstance(scene, KittenAvalanche):
             return scene.interval
