@@ -31,7 +31,8 @@ import numpy as np
 from sinews.benchmarks._measure import Measurement, best_time
 from sinews.control.springnet import SpringNetController, SpringNetGenome
 from sinews.evolve import SerialEvaluator
-from sinews.experiments.springnet_figures import EXPERIMENT, SpringNetSettings, simulate
+from sinews.experiments.springnet_figures import EXPERIMENT
+from sinews.experiments.springnet_fitness import SpringNetSettings, simulate
 from sinews.figures import Figure, humanoid, luxo, rollout, snake
 from sinews.figures._mujoco import require_mujoco
 from sinews.store import RunStore

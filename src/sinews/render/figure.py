@@ -1,13 +1,12 @@
 """Drawing articulated figures in 2D from their model and a trajectory ("system plus states").
 
-`FigureGeometry` is the system: the figure's capsules, boxes, spheres,
-cylinders and ellipsoids read from its compiled MuJoCo model, and the model to
-place them. A trajectory's ``qpos`` frames are the states; forward kinematics
-turns them into each geom's centre and axes in the x-z plane (planar figures
-turn about y only). `FigurePainter` draws a frame on any `Canvas`: the ground
-with a metre scale, a start marker where the root began, an arrow from it to
-the root's x now labelled with the distance, and, above, an optional
-`NetPanel`: a spring net's masses as dots moving on its axis, the springs as
+`FigureGeometry` (in `sinews.render.figure_geometry`) is the system: the
+figure's capsules, boxes, spheres, cylinders and ellipsoids read from its
+compiled MuJoCo model. A trajectory's ``qpos`` frames are the states; forward
+kinematics places each geom in the x-z plane. `FigurePainter` draws a frame
+on any `Canvas`: the ground with a metre scale, a start marker where the root
+began, an arrow from it to the root's x now labelled with the distance, and,
+above, an optional `NetPanel`: a spring net's masses as dots moving on its axis, the springs as
 arcs, each driving mass in the colour of the part its joint moves.
 
 The camera shows the whole motion when it is short; when the figure travels
@@ -21,18 +20,22 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Iterator, Sequence
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 import numpy.typing as npt
 
 from sinews.figures import Figure
-from sinews.figures._mujoco import require_mujoco
 from sinews.render._output import atomic_output, suffix_of
 from sinews.render.canvas import Canvas, Color, Point, shade
 from sinews.render.errors import RenderError
 from sinews.render.ffmpeg import encode_mp4
+from sinews.render.figure_geometry import (
+    CAPSULE,
+    ELLIPSOID,
+    SPHERE,
+    FigureGeometry,
+)
 from sinews.render.figure_panel import NetPanel, draw_panel
 from sinews.render.raster import RasterCanvas
 from sinews.render.style import Style, default_colors
@@ -51,104 +54,11 @@ __all__ = [
 FloatArray = npt.NDArray[np.float64]
 Size = int | tuple[int, int]
 
-_SPHERE, _CAPSULE, _ELLIPSOID, _CYLINDER, _BOX = 2, 3, 4, 5, 6  # mjtGeom values
 _START_COLOR: Color = (46, 139, 87)
 _DISTANCE_COLOR: Color = (200, 60, 40)
 _FOLLOW_AFTER = 3.0  # follow a figure whose path is this many times its size
 _PANEL_SHARE = 0.22  # of the canvas height
 _GROUND_SHARE = 0.2  # of the figure area, below the ground line
-
-
-@dataclass(frozen=True, eq=False)
-class GeomPoses:
-    """Where every geom is in each frame, in the x-z plane (metres).
-
-    Attributes:
-        centers: (T, K, 2) geom centres.
-        ax: (T, K, 2) each geom's local x axis.
-        az: (T, K, 2) each geom's local z axis (a capsule's length runs along it).
-    """
-
-    centers: FloatArray
-    ax: FloatArray
-    az: FloatArray
-
-
-@dataclass(frozen=True, eq=False)
-class FigureGeometry:
-    """The drawable geoms of a figure (the world's floor excluded).
-
-    Build with `FigureGeometry.of`.
-
-    Attributes:
-        figure: the figure.
-        kinds: (K,) MuJoCo geom type of each geom.
-        half: (K, 3) each geom's half extent along its local x and z axes and
-            its rounding radius, metres: ``|ax|·half[0] + |az|·half[1] + half[2]``
-            bounds it.
-        body: (K,) index of each geom's body in ``figure.body_names``.
-        joint_bodies: (n_act,) index of the body each actuated joint moves.
-    """
-
-    figure: Figure
-    kinds: npt.NDArray[np.int64]
-    half: FloatArray
-    body: npt.NDArray[np.int64]
-    joint_bodies: npt.NDArray[np.int64]
-
-    @classmethod
-    def of(cls, figure: Figure) -> FigureGeometry:
-        """Read the geoms of ``figure``'s compiled model."""
-        model = figure.model()
-        keep = [g for g in range(model.ngeom) if model.geom_bodyid[g] > 0]
-        kinds = model.geom_type[keep].astype(np.int64)
-        size = model.geom_size[keep]
-        half = np.zeros((len(keep), 3))
-        for k, (kind, s) in enumerate(zip(kinds.tolist(), size, strict=True)):
-            if kind == _CAPSULE:
-                half[k] = (0.0, s[1], s[0])
-            elif kind == _SPHERE:
-                half[k] = (0.0, 0.0, s[0])
-            elif kind == _CYLINDER:
-                half[k] = (s[0], s[1], 0.0)
-            elif kind in (_BOX, _ELLIPSOID):
-                half[k] = (s[0], s[2], 0.0)
-            else:
-                raise RenderError(f"{figure.name}: cannot draw geom type {kind}")
-        joints = [model.jnt_bodyid[model.joint(j).id] - 1 for j in figure.joints]
-        return cls(
-            figure=figure,
-            kinds=kinds,
-            half=half,
-            body=model.geom_bodyid[keep].astype(np.int64) - 1,
-            joint_bodies=np.array(joints, dtype=np.int64),
-        )
-
-    def poses(self, qpos: npt.ArrayLike) -> GeomPoses:
-        """Forward kinematics of (T, nq) frames."""
-        mujoco = require_mujoco()
-        model = self.figure.model()
-        frames = np.asarray(qpos, dtype=np.float64)
-        if frames.ndim != 2 or frames.shape[1] != model.nq:
-            raise RenderError(f"qpos must have shape (T, {model.nq}), got {frames.shape}")
-        data = mujoco.MjData(model)
-        keep = np.flatnonzero(model.geom_bodyid > 0)
-        centers = np.empty((len(frames), len(keep), 2))
-        axes = np.empty((len(frames), len(keep), 2, 3))
-        for t, q in enumerate(frames):
-            data.qpos[:] = q
-            mujoco.mj_kinematics(model, data)
-            centers[t] = data.geom_xpos[keep][:, [0, 2]]
-            axes[t] = data.geom_xmat[keep].reshape(-1, 3, 3)[:, [0, 2], :]
-        return GeomPoses(centers, axes[..., 0], axes[..., 2])
-
-    def extents(self, poses: GeomPoses) -> FloatArray:
-        """(T, 4) each frame's bounds (x_min, y_min, x_max, y_max) over all geoms."""
-        reach = np.abs(poses.ax) * self.half[:, 0, None] + np.abs(poses.az) * self.half[:, 1, None]
-        reach += self.half[:, 2, None]
-        lo = (poses.centers - reach).min(axis=1)
-        hi = (poses.centers + reach).max(axis=1)
-        return np.concatenate([lo, hi], axis=1)
 
 
 def _pixels(size: Size) -> tuple[int, int]:
@@ -293,17 +203,17 @@ class FigurePainter:
             fill = _color(fill_rgb)
             rim = _color(fill_rgb * 0.55 * (1 - fade) + background * fade)
             c, sx, sz, r = center[k], ax[k] * half[k, 0], az[k] * half[k, 1], half[k, 2]
-            if kind in (_CAPSULE, _SPHERE):
+            if kind in (CAPSULE, SPHERE):
                 ends = view.to_px(np.array([c - sz, c + sz]))
                 start, end = (ends[0, 0], ends[0, 1]), (ends[1, 0], ends[1, 1])
                 radius = max(r * view.scale, 1.0)
-                if kind == _SPHERE or np.allclose(start, end):
+                if kind == SPHERE or np.allclose(start, end):
                     canvas.circle(start, radius, fill, rim, 1.0)
                 else:
                     canvas.line(start, end, rim, 2.0 * radius + 2.0)
                     canvas.line(start, end, fill, 2.0 * radius)
             else:
-                if kind == _ELLIPSOID:
+                if kind == ELLIPSOID:
                     angles = np.linspace(0.0, 2.0 * np.pi, 24, endpoint=False)[:, None]
                     outline = c + np.cos(angles) * sx + np.sin(angles) * sz
                 else:
