@@ -6,11 +6,13 @@ compiled MuJoCo model. A trajectory's ``qpos`` frames are the states; forward
 kinematics places each geom in the x-z plane. `FigurePainter` draws a frame
 on any `Canvas`: the ground with a metre scale, a start marker where the root
 began, an arrow from it to the root's x now labelled with the distance, and,
-above, an optional `NetPanel`: a spring net's masses as dots moving on its axis, the springs as
-arcs, each driving mass in the colour of the part its joint moves.
+above, an optional `NetPanel`: a spring net's masses as dots moving on its
+axis, the springs as arcs, each driving mass in the colour of the part its
+joint moves.
 
 The camera shows the whole motion when it is short; when the figure travels
-more than three times its own size, it follows the figure at a fixed scale.
+more than three times its own size, it follows the figure at a fixed scale
+(see `FigurePainter`).
 Still pictures (PNG, SVG) are strobe images: poses at even times, older ones
 fainter, with the whole path in view.
 """
