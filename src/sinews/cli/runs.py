@@ -185,7 +185,9 @@ def render(
     debug_overlay: Annotated[
         bool, typer.Option(help="Dancers: draw node labels and force arrows.")
     ] = False,
-    size: Annotated[int, typer.Option(help="Picture width in pixels (figures: 3:4 high).")] = 480,
+    size: Annotated[
+        int, typer.Option(help="Picture width in pixels (figures: 3/4 as high).")
+    ] = 480,
     db: Db = None,
 ) -> None:
     """Re-simulate stored individuals and draw them.
@@ -200,6 +202,8 @@ def render(
     with open_store(db) as store:
         experiment = experiment_of(store.run(run))
         if experiment is not None:
+            if debug_overlay:
+                raise SinewsError("--debug-overlay is for dancer runs")
             _render_figures(store, run, experiment, output, individual, generations, size)
             return
         if generations is not None:
@@ -233,9 +237,11 @@ def _generation_bests(store: RunStore, run: int, generations: str) -> list[Indiv
             wanted = [int(g) for g in generations.split(",") if g.strip()]
         except ValueError:
             raise SinewsError("--generations takes 'all' or numbers like 0,5,19") from None
+    if not wanted:
+        raise SinewsError("--generations names no generation")
     missing = sorted(set(wanted) - set(available))
-    if missing or not wanted:
-        raise SinewsError(f"run {run} has no scored generation {missing[0] if missing else ''}")
+    if missing:
+        raise SinewsError(f"run {run} has no scored generation {missing[0]}")
     best_index = dict(zip(available, stats.best_index.tolist(), strict=True))
     return [store.individuals(run, g)[best_index[g]] for g in wanted]
 
