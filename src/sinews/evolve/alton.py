@@ -47,13 +47,11 @@ from sinews.evolve.errors import StrategyError
 from sinews.evolve.operators import Variation
 from sinews.evolve.strategy import FloatArray, IntArray, Strategy
 
-__all__ = ["MUTATION_MIX", "MUTATION_TYPES", "OFFSPRING", "AltonGA", "SpringNetEncoding"]
-
-MUTATION_TYPES = ("all springs", "one spring", "one mass", "one position")
-"""The paper's four kinds of mutation, in `MUTATION_MIX` order."""
+__all__ = ["MUTATION_MIX", "OFFSPRING", "AltonGA", "SpringNetEncoding"]
 
 MUTATION_MIX = (0.2, 0.6, 0.1, 0.1)
-"""Probability of each of `MUTATION_TYPES`."""
+"""Probability of each kind of mutation: every spring constant, one k_ij, one mass,
+one initial position."""
 
 OFFSPRING = 3
 """Offspring per survivor."""
