@@ -2,6 +2,12 @@
 
 from __future__ import annotations
 
+import os
+import signal
+import sqlite3
+import subprocess
+import sys
+import time
 from pathlib import Path
 from typing import Any
 
@@ -10,9 +16,9 @@ import pytest
 
 pytest.importorskip("mujoco")
 
+from sinews.cli import main
 from sinews.errors import SinewsError
 from sinews.evolve import ProcessEvaluator, SerialEvaluator
-from sinews.experiments.evolution import GenerationSummary
 from sinews.experiments.figure_runs import experiment_of, figure_experiment, parse_keep
 from sinews.experiments.springnet_figures import EXPERIMENT
 from sinews.experiments.springnet_fitness import SpringNetSettings
@@ -77,22 +83,37 @@ def test_a_run_stores_the_papers_generations(tmp_path: Path) -> None:
         assert document["kind"] == "springnet" and len(document["springs"]) == 4
 
 
-def test_an_interrupted_run_resumes_to_the_uninterrupted_one(tmp_path: Path) -> None:
-    """The scorer's memory of the last generation is empty after a restart: same numbers."""
-    evolve(tmp_path / "whole.db", generations=4)
+def stored_generations(db: Path) -> int:
+    try:
+        with sqlite3.connect(f"file:{db}?mode=ro", uri=True, timeout=5) as conn:
+            return int(conn.execute("SELECT count(*) FROM generations").fetchone()[0])
+    except sqlite3.OperationalError:  # not created yet
+        return 0
 
-    def stop_after_one(summary: GenerationSummary) -> None:
-        if summary.generation == 1:
-            raise KeyboardInterrupt
 
-    with RunStore(tmp_path / "cut.db") as store:
-        run = EXPERIMENT.create_run(store, figure="snake", file_values={},
-                                    options={**TINY, "generations": 4})  # fmt: skip
-        with pytest.raises(KeyboardInterrupt):
-            EXPERIMENT.run(store, run, evaluator=SerialEvaluator(), on_generation=stop_after_one)
-        assert store.run(run).status == "failed" and store.run(run).generations == 2
-        EXPERIMENT.run(store, run, evaluator=SerialEvaluator())
-    assert contents(tmp_path / "cut.db") == contents(tmp_path / "whole.db")
+def test_a_killed_run_resumes_to_the_uninterrupted_one(tmp_path: Path) -> None:
+    """SIGKILL mid-run, then resume: the same genomes, fitness, lineage and checkpoints.
+
+    The resumed scorer starts without its memory of the last generation and
+    simulates the survivors again: the numbers must not change.
+    """
+    settings = ["--population", "12", "--generations", "14", "--seconds", "1", "--seed", "8",
+                "--executor", "serial"]  # fmt: skip
+    whole, cut = tmp_path / "whole.db", tmp_path / "cut.db"
+    assert main(["evolve", "snake", *settings, "--db", str(whole)]) == 0
+    code = "import sys; from sinews.cli import main; sys.exit(main(sys.argv[1:]))"
+    args = [sys.executable, "-c", code, "evolve", "snake", *settings, "--db", str(cut)]
+    proc = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.monotonic() + 120
+    while stored_generations(cut) < 3 and proc.poll() is None:
+        assert time.monotonic() < deadline, "the run did not get going"
+        time.sleep(0.002)
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+    assert proc.returncode == -signal.SIGKILL, "the run finished before it could be killed"
+    assert 3 <= stored_generations(cut) < 14
+    assert main(["runs", "resume", "1", "--db", str(cut)]) == 0
+    assert contents(cut) == contents(whole)
 
 
 def test_the_studio_hook_keeps_picks_and_breeds_the_next(tmp_path: Path) -> None:
