@@ -99,7 +99,7 @@ def _evolution(population: int, generations: int, seconds: float) -> Measurement
         EXPERIMENT.run(store, run_id, evaluator=SerialEvaluator())
         total = time.perf_counter() - started
     return Measurement(
-        f"snake evolution {generations} gen x {population} nets x {seconds:g} s: {total:.0f} s",
+        f"snake GA {generations} gen x {population} x {seconds:g} s: {total:.0f} s",
         "nets/s",
         generations * population / total,
         population / bare,
