@@ -160,9 +160,9 @@ class AltonGA(Strategy):
     Example:
         >>> ga = AltonGA(population_size=10, genome_size=14, rng=np.random.default_rng(0))
         >>> genes = ga.ask()  # (10, 14): ten random nets of 4 masses
-        >>> ga.tell(genes[:, 0], picks=[9])  # fitness; net 9 survives whatever its rank
-        >>> ga.ask().shape, ga.parents[:2, 0].tolist()
-        ((10, 14), [9, 0])
+        >>> ga.tell(np.arange(10.0), picks=[0])  # net 9 is fittest; net 0 is kept by hand
+        >>> ga.ask().shape, ga.parents[:2, 0].tolist()  # n/5 = 2 survivors
+        ((10, 14), [0, 9])
     """
 
     name = "alton"
