@@ -150,3 +150,22 @@ def test_the_limbo_pole_is_felt_only_when_touched() -> None:
 def test_the_meter_needs_observations(hop: Task) -> None:
     with pytest.raises(FigureError):
         TaskMeter(hop, 1).terms()
+
+
+def test_tracked_sites_are_measured_from_the_first_tick() -> None:
+    task = humanoid_reach("nose")
+    figure = task.figure
+    first: list[np.ndarray] = []
+    meter = TaskMeter(task, 1)
+
+    def observe(t: float, sensors: np.ndarray, targets: np.ndarray) -> None:
+        if not first:
+            first.append(sensors.copy())
+        meter(t, sensors, targets)
+
+    rollout(figure, HoldPose(figure.neutral), 1, 0.2, observer=observe)
+    at_rest = first[0][0]
+    assert at_rest[figure.sensor_index("z_nose")] == pytest.approx(1.6, abs=0.01)
+    assert at_rest[figure.sensor_index("z_hand_r")] == pytest.approx(0.815, abs=0.01)
+    terms = dict(zip(task.weights, meter.terms()[0], strict=True))
+    assert terms["early"] == 0.0 and terms["distance"] < -0.5  # the hand hangs far from the nose

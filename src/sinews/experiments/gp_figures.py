@@ -114,7 +114,7 @@ class GPGeneration:
         best_program: the best individual as an S-expression.
         failed: simulations that failed.
         nonfinite: individuals whose trees produced NaN or inf at least once.
-        seconds: wall time to simulate, rate and (for the next one) breed it.
+        seconds: wall time to breed it, simulate and rate it.
     """
 
     generation: int

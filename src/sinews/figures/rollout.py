@@ -147,6 +147,8 @@ def rollout(
     model = figure.model(timestep=1.0 / physics_hz)
     threads = nthread or os.cpu_count() or 1
     sim = Population(model, n_individuals, threads, max_speed)
+    if figure.sites:  # site positions are read at t = 0 too (contact forces are 0 until a step)
+        sim.batch.forward(stage=require_mujoco().mjtStage.mjSTAGE_POS)
     reader = SensorReader(model, figure.joints, figure.contact_bodies, figure.sites)
     sensors = np.empty((n_individuals, reader.n_columns))
     initial_x = sim.qpos[:, 0].copy()

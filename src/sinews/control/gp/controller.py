@@ -8,9 +8,9 @@ angles (the paper's humanoid had 4–10 of its joints under genetic control).
 Terminal values are an affine map of the figure's sensor columns, ``inputs =
 sensors @ input_weights + input_offset``: a plain sensor is a column of the
 identity, a goal-relative position such as ``gx = X − root_x`` has weight −1
-and offset X. A tree value that is NaN becomes the joint's neutral angle, ±inf
-the end of its range; both are counted in `GPController.nonfinite`. Finite
-values are clipped to the joint's range.
+and offset X. Tree values are clipped to the joint's range; a NaN becomes the
+joint's neutral angle and ±inf the end of its range (the neutral angle if the
+range is unbounded); both are counted in `GPController.nonfinite`.
 """
 
 from __future__ import annotations
@@ -130,9 +130,10 @@ class GPController:
         """
         inputs = sensors @ self.wiring.input_weights + self.wiring.input_offset
         values = self.packed.evaluate(inputs, self._values)
+        targets = np.clip(values, self._low, self._high)
         finite = np.isfinite(values)
         if not finite.all():
             self.nonfinite += np.count_nonzero(~finite, axis=1)
-            values = np.where(np.isnan(values), self._neutral, values)
-        self._targets[:, self.wiring.actuators] = np.clip(values, self._low, self._high)
+            targets = np.where(np.isfinite(targets), targets, self._neutral)
+        self._targets[:, self.wiring.actuators] = targets
         return self._targets

@@ -83,6 +83,11 @@ class PackedPopulation:
         )
 
     @cached_property
+    def _terminals_read(self) -> int:
+        """One more than the highest terminal column any tree reads (0 if none)."""
+        return max(0, int(self.code.max()) - VAR + 1)
+
+    @cached_property
     def _stack(self) -> FloatArray:
         """(P, L) value-stack scratch; L, the longest tree, bounds the stack's height."""
         return np.empty((self.n_programs, int(np.diff(self.tree_start).max())))
@@ -101,9 +106,10 @@ class PackedPopulation:
         rows = np.ascontiguousarray(inputs, dtype=np.float64)
         if rows.ndim != 2 or rows.shape[0] != self.n_programs:
             raise GPError(f"inputs must have shape ({self.n_programs}, V), got {rows.shape}")
-        used = self.code[self.code >= VAR]
-        if used.size and used.max() - VAR >= rows.shape[1]:
-            raise GPError(f"a tree reads terminal {used.max() - VAR}, inputs have {rows.shape[1]}")
+        if self._terminals_read > rows.shape[1]:
+            raise GPError(
+                f"the trees read {self._terminals_read} terminals, inputs have {rows.shape[1]}"
+            )
         result = np.empty(shape) if out is None else out
         parallel = len(self.code) >= kernels.PARALLEL_NODES
         run = kernels.evaluate if parallel else kernels.evaluate_serial
