@@ -3,11 +3,11 @@
 Three cases, each timed against a reference in the same run:
 
 - **interpreter**: tree evaluations per second of `PackedPopulation.evaluate`
-  (the numba kernel, as the controller calls it each tick) on P random
+  (the serial numba kernel, as the controller calls it each tick) on P random
   programs of 3 trees (ramped half-and-half, depths 2–6, the lamp's
   terminals), against the numpy reference interpreter on the same programs.
 - **parallel kernel**: the parallel kernel against the serial one on the same
-  work (is waking the threads worth it at this size?).
+  work, outside any rollout (is waking the threads worth it at this size?).
 - **generation**: generations per second of one GP generation of Luxo
   hopping — P programs simulated for 5 s at 1 kHz physics and 100 Hz control,
   rated, and the next generation bred — against MuJoCo stepping alone: the
@@ -16,11 +16,15 @@ Three cases, each timed against a reference in the same run:
   the same threads. The ratio is MuJoCo's share of the generation's time, so
   1 − ratio is the share spent outside MuJoCo stepping (interpreter, sensors,
   fitness, breeding).
+- **generation, parallel interpreter**: the same generation with the parallel
+  kernel inside the rollout, against the serial one (the default).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import os
+import time
 
 import numpy as np
 import numpy.typing as npt
@@ -32,7 +36,6 @@ from sinews.control.gp import (
     ramped_half_and_half,
     reference_population,
 )
-from sinews.control.gp.kernels import evaluate, evaluate_serial
 from sinews.evolve.gp import GPStrategy
 from sinews.experiments.gp_figures import GPSettings, evaluate_programs, primitive_set, wiring
 from sinews.figures import rollout
@@ -50,20 +53,25 @@ def _interpreter(task: Task, size: int, calls: int) -> list[Measurement]:
     inputs = np.random.default_rng(1).normal(size=(size, pset.n_terminals))
     packed = PackedPopulation.pack(programs)
     out = np.empty((size, 3))
-    packed.evaluate(inputs, out)  # compile or load the numba cache
-    ours = best_time(lambda: [packed.evaluate(inputs, out) for _ in range(calls)]) / calls
+    for threads in (False, True):
+        packed.evaluate(inputs, out, parallel=threads)  # compile or load the numba cache
+
+    def per_call(parallel: bool) -> float:
+        def calls_in_a_row() -> None:
+            for _ in range(calls):
+                packed.evaluate(inputs, out, parallel=parallel)
+
+        return best_time(calls_in_a_row) / calls
+
+    serial, in_parallel = per_call(False), per_call(True)
     reference = best_time(lambda: reference_population(programs, inputs), repeats=1)
-    stack = np.empty((size, int(np.diff(packed.tree_start).max())))
-    args = (packed.code, packed.consts, packed.tree_start, packed.const_start, inputs, out, stack)
-    parallel = best_time(lambda: [evaluate(*args) for _ in range(calls)]) / calls
-    serial = best_time(lambda: [evaluate_serial(*args) for _ in range(calls)]) / calls
     mean = len(packed.code) / (size * 3)
     case = f"P={size} x 3 trees, {mean:.0f} nodes on average"
     trees = size * 3
     return [
-        Measurement(f"interpreter {case}", "tree-evals/s", trees / ours, trees / reference,
+        Measurement(f"interpreter {case}", "tree-evals/s", trees / serial, trees / reference,
                     "numpy reference interpreter"),
-        Measurement(f"parallel kernel {case}", "tree-evals/s", trees / parallel, trees / serial,
+        Measurement(f"parallel kernel {case}", "tree-evals/s", trees / in_parallel, trees / serial,
                     "serial kernel"),
     ]  # fmt: skip
 
@@ -84,42 +92,48 @@ def _stepping_alone(task: Task, targets: FloatArray, substeps: int) -> float:
     return best_time(replay, repeats=1)
 
 
-def _generation(task: Task, size: int, seconds: float, repeats: int) -> Measurement:
-    settings = GPSettings(population=size, seconds=seconds)
+def _generation(task: Task, size: int, seconds: float, repeats: int) -> list[Measurement]:
+    serial = GPSettings(population=size, seconds=seconds)
+    parallel = dataclasses.replace(serial, parallel_interpreter=True)
     first = GPStrategy(
-        population_size=size, pset=primitive_set(task, settings), n_trees=len(task.joints),
-        rng=np.random.default_rng(0), variation=settings.variation,
+        population_size=size, pset=primitive_set(task, serial), n_trees=len(task.joints),
+        rng=np.random.default_rng(0), variation=serial.variation,
     )  # fmt: skip
     programs = first.ask()
-    fresh = [GPStrategy.from_bytes(first.to_bytes()) for _ in range(repeats)]
-    evaluate_programs(task, programs[:2], 0, settings)  # compile or load the numba cache
+    checkpoint = first.to_bytes()
+    for settings in (serial, parallel):
+        evaluate_programs(task, programs[:2], 0, settings)  # compile or load the numba cache
 
-    def generation() -> None:
-        strategy = fresh.pop()
+    def generation(settings: GPSettings) -> float:
+        strategy = GPStrategy.from_bytes(checkpoint)
+        start = time.perf_counter()
         strategy.tell(evaluate_programs(task, programs, 0, settings).fitness)
         strategy.ask()
+        return time.perf_counter() - start
 
     targets: list[FloatArray] = []
     rollout(
         task.figure, GPController(programs, wiring(task)), size, seconds,
         observer=lambda t, sensors, answer: targets.append(answer.copy()),
     )  # fmt: skip
-    substeps = settings.physics_hz // settings.control_hz
-    ours, reference = np.inf, np.inf
-    for _ in range(repeats):  # alternately, so that load from elsewhere hits both alike
-        ours = min(ours, best_time(generation, 1))
-        reference = min(reference, _stepping_alone(task, np.array(targets[:-1]), substeps))
-    return Measurement(
-        f"generation luxo-hop P={size} x {seconds:g} s at 1 kHz",
-        "generations/s",
-        1.0 / ours,
-        1.0 / reference,
-        "MuJoCo stepping alone (same motions)",
-    )
+    replay = np.array(targets[:-1])
+    substeps = serial.physics_hz // serial.control_hz
+    times = {"serial": np.inf, "parallel": np.inf, "mujoco": np.inf}
+    for _ in range(repeats):  # alternately, so that load from elsewhere hits all alike
+        times["serial"] = min(times["serial"], generation(serial))
+        times["parallel"] = min(times["parallel"], generation(parallel))
+        times["mujoco"] = min(times["mujoco"], _stepping_alone(task, replay, substeps))
+    case = f"generation luxo-hop P={size} x {seconds:g} s at 1 kHz"
+    return [
+        Measurement(case, "generations/s", 1 / times["serial"], 1 / times["mujoco"],
+                    "MuJoCo stepping alone (same motions)"),
+        Measurement(f"{case}, parallel interpreter", "generations/s", 1 / times["parallel"],
+                    1 / times["serial"], "serial interpreter"),
+    ]  # fmt: skip
 
 
 def run(quick: bool = False) -> list[Measurement]:
     """P = 250 programs; a generation of 5 s trials (quick: P = 64, 1 s)."""
     task = luxo_hop(1.0)
     size, seconds, calls, repeats = (64, 1.0, 200, 1) if quick else (250, 5.0, 2000, 2)
-    return [*_interpreter(task, size, calls), _generation(task, size, seconds, repeats)]
+    return [*_interpreter(task, size, calls), *_generation(task, size, seconds, repeats)]

@@ -67,6 +67,8 @@ class GPSettings:
             (the paper's 50th generation is ``full=49``).
         seconds: trial length; None for the task's.
         nthread: MuJoCo threads (None: every CPU).
+        parallel_interpreter: evaluate programs with the parallel kernel (off:
+            on 2 cores it doubled a generation's time; see `sinews.benchmarks.gp`).
         record_hz: frame rate of the best individual's recorded motion.
     """
 
@@ -80,6 +82,7 @@ class GPSettings:
     phase_in: PhaseIn = field(default_factory=lambda: PhaseIn(start=5, full=49))
     seconds: float | None = None
     nthread: int | None = None
+    parallel_interpreter: bool = False
     record_hz: float = 60.0
 
 
@@ -188,7 +191,7 @@ def evaluate_programs(
         settings: rates, duration, threads.
         record: keep the motion (for trajectories).
     """
-    controller = GPController(programs, wiring(task))
+    controller = GPController(programs, wiring(task), parallel=settings.parallel_interpreter)
     meter = TaskMeter(task, len(programs))
     result = rollout(
         task.figure, controller, len(programs), settings.seconds or task.seconds,

@@ -92,13 +92,19 @@ class GPController:
     Args:
         programs: P programs of ``wiring.n_trees`` trees each.
         wiring: sensors → terminals and trees → actuators.
+        parallel: evaluate with the parallel kernel (slower inside a MuJoCo
+            rollout on a machine whose cores MuJoCo already uses; see
+            `sinews.control.gp.kernels`).
 
     Attributes:
         nonfinite: (P,) number of NaN or infinite tree values since `reset`.
     """
 
-    def __init__(self, programs: Sequence[Program], wiring: Wiring) -> None:
+    def __init__(
+        self, programs: Sequence[Program], wiring: Wiring, *, parallel: bool = False
+    ) -> None:
         self.packed = PackedPopulation.pack(programs)
+        self.parallel = parallel
         if self.packed.n_trees != wiring.n_trees:
             raise GPError(
                 f"programs have {self.packed.n_trees} trees, wiring drives {wiring.n_trees}"
@@ -129,7 +135,7 @@ class GPController:
             (P, n_act) desired angles, rad.
         """
         inputs = sensors @ self.wiring.input_weights + self.wiring.input_offset
-        values = self.packed.evaluate(inputs, self._values)
+        values = self.packed.evaluate(inputs, self._values, parallel=self.parallel)
         targets = np.clip(values, self._low, self._high)
         finite = np.isfinite(values)
         if not finite.all():

@@ -2,7 +2,7 @@
 
 `PackedPopulation` concatenates every individual's trees once per generation;
 its `evaluate` then answers all (P, J) tree values for a (P, V) input array in
-one numba call (parallel over individuals when the population is large). The
+one numba call (serial by default, or parallel over individuals). The
 reference, `reference_tree`, evaluates one tree with numpy over many input
 rows by recursion on the prefix codes; it defines the semantics the kernel
 must match and is kept for tests and benchmarks.
@@ -92,12 +92,16 @@ class PackedPopulation:
         """(P, L) value-stack scratch; L, the longest tree, bounds the stack's height."""
         return np.empty((self.n_programs, int(np.diff(self.tree_start).max())))
 
-    def evaluate(self, inputs: FloatArray, out: FloatArray | None = None) -> FloatArray:
+    def evaluate(
+        self, inputs: FloatArray, out: FloatArray | None = None, *, parallel: bool = False
+    ) -> FloatArray:
         """Every tree's value on its individual's input row.
 
         Args:
             inputs: (P, V) terminal values; V must cover every terminal used.
             out: optional (P, J) float64 destination.
+            parallel: use the parallel kernel (not inside a MuJoCo rollout: see
+                `sinews.control.gp.kernels`).
 
         Returns:
             (P, J) tree values (non-finite where the arithmetic overflowed).
@@ -111,7 +115,6 @@ class PackedPopulation:
                 f"the trees read {self._terminals_read} terminals, inputs have {rows.shape[1]}"
             )
         result = np.empty(shape) if out is None else out
-        parallel = len(self.code) >= kernels.PARALLEL_NODES
         run = kernels.evaluate if parallel else kernels.evaluate_serial
         run(self.code, self.consts, self.tree_start, self.const_start, rows, result, self._stack)
         return result
