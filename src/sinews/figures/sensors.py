@@ -16,7 +16,8 @@ Columns, in order (``S = 1 + 2·(3 + n_act) + 2·n_contact + 2·n_site``):
 Positions and rates are the state after the last physics step; contact forces
 come from MuJoCo ``contact`` sensors (``reduce="netforce"``) and site positions
 from ``framepos`` sensors evaluated in that step, i.e. one physics step (1 ms)
-behind.
+behind. At time 0 the contact forces read 0 and the site positions are the
+rest pose's (the rollout computes them before the first tick).
 """
 
 from __future__ import annotations
