@@ -24,7 +24,7 @@ from sinews.experiments.dancer_evolution import (
     song_path,
 )
 from sinews.experiments.dancer_fitness import beat_align
-from sinews.experiments.evolution import record_picks
+from sinews.experiments.evolution import FloatStrategies, record_picks
 from sinews.experiments.run_config import EvolutionConfig, load_toml
 from sinews.store import RunStore, generation_stats
 from sinews.trajectory import Trajectory
@@ -124,7 +124,7 @@ def test_interactive_run_advances_by_picks_in_one_transaction(tmp_path: Path) ->
         assert all(set(i.parents) <= picked_ids and i.parents for i in after)
         with pytest.raises(SinewsError, match="picks are for generation 1, not 0"):
             pick_dancers(store, run, 0, [2])
-        record_picks(store, run, 1, [], genome_size=DancerGenome.SIZE)
+        record_picks(store, run, 1, [], strategies=FloatStrategies(DancerGenome.SIZE))
         fresh = store.individuals(run, 2)
         assert fresh[0].fitness is None and all(not i.parents for i in fresh)
 
@@ -135,7 +135,7 @@ def test_a_ga_run_refuses_picks_and_can_be_extended(tmp_path: Path) -> None:
         run_dancers(store, run, evaluator=SerialEvaluator())
         assert store.run(run).status == "finished"
         with pytest.raises(SinewsError, match="does not take picks"):
-            record_picks(store, run, 1, [0], genome_size=DancerGenome.SIZE)
+            record_picks(store, run, 1, [0], strategies=FloatStrategies(DancerGenome.SIZE))
         run_dancers(store, run, evaluator=SerialEvaluator(), generations=3)
         info = store.run(run)
         assert (info.generations, info.status, info.config["generations"]) == (3, "finished", 3)

@@ -1,8 +1,9 @@
 """``sinews evolve dancers`` and ``sinews evolve FIGURE``: automatic runs with a progress bar.
 
 ``sinews evolve snake|luxo|humanoid --controller KIND`` runs the controller
-kind's experiment (`sinews.experiments.figure_runs.FIGURE_EXPERIMENTS`); a new
-kind needs no new command.
+kind's experiment (`sinews.experiments.figure_runs.FIGURE_EXPERIMENTS`): spring
+nets, or GP programs for a task (``--task hop|limbo|reach|nose``); a new kind
+needs no new command.
 """
 
 from __future__ import annotations
@@ -19,7 +20,11 @@ from rich.table import Table
 
 from sinews.evolve import EVALUATORS, Evaluator, make_evaluator
 from sinews.experiments import dancer_evolution
-from sinews.experiments.evolution import GenerationSummary
+from sinews.experiments.evolution import (
+    GenerationSummary,
+    best_at_full_weight,
+    full_weight_fitness,
+)
 from sinews.experiments.figure_runs import (
     FIGURE_EXPERIMENTS,
     FIGURES,
@@ -27,14 +32,15 @@ from sinews.experiments.figure_runs import (
     figure_experiment,
     read_keep_file,
 )
-from sinews.experiments.run_config import load_toml
-from sinews.store import RunInfo, RunStore, generation_stats
+from sinews.experiments.run_config import EvolutionConfig, load_toml
+from sinews.store import Individual, RunInfo, RunStore, generation_stats
 
 __all__ = [
     "Db",
     "Executor",
     "Scheduler",
     "Workers",
+    "best_of",
     "default_executor",
     "open_store",
     "register",
@@ -69,6 +75,14 @@ def open_store(db: Path | None) -> RunStore:
 def default_executor(info: RunInfo) -> str:
     """``serial`` for figure runs (MuJoCo steps a batch on every core), else ``processes``."""
     return "serial" if experiment_of(info) is not None else "processes"
+
+
+def best_of(store: RunStore, run_id: int) -> Individual:
+    """The run's best: for figure runs rated at full style weight (see `best_at_full_weight`)."""
+    info = store.run(run_id)
+    if experiment_of(info) is None:
+        return store.best(run_id)
+    return best_at_full_weight(store, run_id, EvolutionConfig.from_dict(info.config).fitness)
 
 
 def run_with_progress(
@@ -137,17 +151,27 @@ def print_summary(store: RunStore, run_id: int) -> None:
         )
     console = Console()
     console.print(table)
-    if len(stats.generations):
-        best = store.best(run_id)
-        console.print(
-            f"best: individual {best.id} (generation {best.generation}, #{best.index}), "
-            f"fitness {_number(best.fitness)}",
-            f"  sinews runs best {run_id} -o best.json",
-            f"  sinews render {run_id} --best -o best.mp4",
-            f"  sinews plot {run_id} -o fitness.png",
-            sep="\n",
-            highlight=False,
-        )
+    if not len(stats.generations):
+        return
+    best = best_of(store, run_id)
+    info = store.run(run_id)
+    experiment = experiment_of(info)
+    text = None if experiment is None else experiment.genome_text(best)
+    rated = f"fitness {_number(best.fitness)}"
+    spec = EvolutionConfig.from_dict(info.config).fitness
+    if experiment is not None and spec.phase_in.full > 0:
+        full = full_weight_fitness([best.terms or {}], [best.failed], spec)[0]
+        rated += f", at full style weight {_number(full)}"
+    console.print(
+        f"best: individual {best.id} (generation {best.generation}, #{best.index}), {rated}",
+        f"  sinews runs best {run_id} -o {'program.txt' if text else 'best.json'}",
+        f"  sinews render {run_id} --best -o best.mp4",
+        f"  sinews plot {run_id} -o fitness.png",
+        sep="\n",
+        highlight=False,
+    )
+    if text is not None:
+        typer.echo(text)  # as is: a program must not be wrapped or highlighted
 
 
 def _number(value: float | None) -> str:
@@ -228,14 +252,29 @@ def _figure_command(figure: str) -> None:
         controller: Annotated[
             str, typer.Option(help=f"Controller kind: {', '.join(FIGURE_EXPERIMENTS)}.")
         ] = "springnet",
+        task: Annotated[
+            str | None,
+            typer.Option(help="GP: the task, hop or limbo (Luxo), reach or nose (humanoid)."),
+        ] = None,
+        target: Annotated[
+            str | None,
+            typer.Option(help="GP: where to go: the X, m (Luxo, default 1), or X,Z (humanoid)."),
+        ] = None,
+        pole_height: Annotated[
+            float | None,
+            typer.Option(help="GP limbo: the bar's underside, m (default 80% of the lamp)."),
+        ] = None,
         population: Annotated[
-            int | None, typer.Option(help="Individuals per generation (default 2000).")
+            int | None,
+            typer.Option(help="Individuals per generation (default: spring nets 2000, GP 250)."),
         ] = None,
         generations: Annotated[
-            int | None, typer.Option(help="Generations to run (default 20).")
+            int | None,
+            typer.Option(help="Generations to run (default: spring nets 20, GP 50)."),
         ] = None,
         seconds: Annotated[
-            float | None, typer.Option(help="Length of each trial (default 5 s).")
+            float | None,
+            typer.Option(help="Length of each trial (default: spring nets 5 s, GP the task's)."),
         ] = None,
         seed: Annotated[int | None, typer.Option(help="Run seed (default 0).")] = None,
         masses: Annotated[
@@ -243,13 +282,16 @@ def _figure_command(figure: str) -> None:
             typer.Option(help="Point masses per spring net (default: 4, or one per joint)."),
         ] = None,
         strategy: Annotated[
-            str | None, typer.Option(help="alton (the paper's GA, default), ga or hybrid.")
+            str | None,
+            typer.Option(
+                help="Spring nets: alton (the paper's GA, default), ga or hybrid; GP: gp."
+            ),
         ] = None,
         keep: Annotated[
             Path | None,
             typer.Option(
-                help="Hand picks: a file of lines 'GENERATION: INDEX INDEX ...' naming "
-                "individuals that survive that generation whatever their rank."
+                help="Spring nets' hand picks: a file of lines 'GENERATION: INDEX INDEX ...' "
+                "naming individuals that survive that generation whatever their rank."
             ),
         ] = None,
         config: Annotated[
@@ -262,6 +304,9 @@ def _figure_command(figure: str) -> None:
     ) -> None:
         experiment = figure_experiment(controller)
         options = {
+            "task": task,
+            "target": target,
+            "pole_height": pole_height,
             "population": population,
             "generations": generations,
             "seconds": seconds,
@@ -284,8 +329,9 @@ def _figure_command(figure: str) -> None:
         typer.echo(f"{time.perf_counter() - started:.1f} s", err=True)
 
     evolve_figure.__doc__ = (
-        f"Evolve controllers that move the {figure} as far as they can (|x_end - x_start|), "
-        "storing every generation (continue with: sinews runs resume)."
+        f"Evolve controllers for the {figure}: spring nets that move it as far as they can "
+        "(|x_end - x_start|), or GP programs for a task; every generation is stored "
+        "(continue with: sinews runs resume)."
     )
     evolve_app.command(figure)(evolve_figure)
 

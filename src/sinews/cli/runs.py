@@ -15,6 +15,7 @@ from sinews.cli.evolve import (
     Executor,
     Scheduler,
     Workers,
+    best_of,
     default_executor,
     open_store,
     print_summary,
@@ -87,17 +88,23 @@ def show(run: Run, db: Db = None) -> None:
 
 @runs_app.command("best")
 def best(run: Run, output: Output, db: Db = None) -> None:
-    """Save the run's best individual as JSON (a dancer genome, or a figure's controller)."""
+    """Save the run's best individual: JSON (a dancer genome, a figure's controller), or for
+    GP runs a .txt of the program's S-expression."""
     with open_store(db) as store:
-        individual = store.best(run)
+        individual = best_of(store, run)
         experiment = experiment_of(store.run(run))
+        seed = ""
         if experiment is None:
             _dancer_genome(store, individual).save(output)
             seed = f", wiggle seed {individual.seed}"
+        elif output.suffix.lower() == ".txt":
+            text = experiment.genome_text(individual)
+            if text is None:
+                raise SinewsError(f"run {run}'s controllers have no text form; write a .json")
+            output.write_text(text + "\n", encoding="utf-8")
         else:
             document = experiment.genome_document(store, individual)
             output.write_text(json.dumps(document, indent=1) + "\n", encoding="utf-8")
-            seed = ""
         typer.echo(
             f"wrote {output} (individual {individual.id}, generation {individual.generation}, "
             f"fitness {_number(individual.fitness)}{seed})"
@@ -220,7 +227,7 @@ def render(
 
 def _chosen(store: RunStore, run: int, individual: int | None) -> Individual:
     """The individual ``individual`` of ``run``, or the run's best if None."""
-    chosen = store.best(run) if individual is None else store.individual(individual)
+    chosen = best_of(store, run) if individual is None else store.individual(individual)
     if chosen.run_id != run:
         raise SinewsError(f"individual {chosen.id} belongs to run {chosen.run_id}, not {run}")
     return chosen
@@ -272,10 +279,12 @@ def _render_figures(
     if generations is None:
         (replay,) = replays
         path = render_figure(geometry, replay.trajectory, output, size=pixels,
-                             panel=replay.panel, title=titles[0])  # fmt: skip
+                             panel=replay.panel, title=titles[0], scene=replay.scene)  # fmt: skip
     else:
         painters = [
-            FigurePainter(geometry, r.trajectory, size=pixels, panel=r.panel, title=title)
+            FigurePainter(
+                geometry, r.trajectory, size=pixels, panel=r.panel, title=title, scene=r.scene
+            )
             for r, title in zip(replays, titles, strict=True)
         ]
         path = render_figure_sequence(painters, output)
@@ -300,8 +309,9 @@ def plot(run: Run, output: Output, db: Db = None) -> None:
         song = info.config.get("song", "")
         title = f"run {run}: {info.kind}{f' to {song}' if song else ''}"
         title += " (terms of each best)" if terms else ""
-        if experiment_of(info) is not None:
-            title += f", seed {info.seed}: distance (m)"
+        experiment = experiment_of(info)
+        if experiment is not None:
+            title += f", seed {info.seed}: {experiment.fitness_label}"
         path = plot_fitness(stats.generations, series, output, title)
         store.add_media(run, path, kind=path.suffix.lstrip(".").lower())
     typer.echo(f"wrote {path}")

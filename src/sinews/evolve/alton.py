@@ -166,6 +166,7 @@ class AltonGA(Strategy):
     """
 
     name = "alton"
+    takes: ClassVar[tuple[str, ...]] = ("fitness", "picks")
     own_options: ClassVar[tuple[str, ...]] = ("mutations",)
 
     def __init__(

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, Literal
 
@@ -141,10 +142,12 @@ class GPStrategy:
 
     Attributes:
         name: ``"gp"`` in checkpoints.
-        codec: the genome codec of `encode`.
+        takes: ``tell`` takes fitness only.
+        codec: the genome codec of `encode` and `genomes`.
     """
 
     name = "gp"
+    takes = ("fitness",)
     codec = GENOME_CODEC
 
     def __init__(
@@ -293,6 +296,10 @@ class GPStrategy:
     def encode(self, program: Program) -> bytes:
         """One program as `codec` bytes (for a run store)."""
         return encode_program(program, self.pset)
+
+    def genomes(self, population: Sequence[Program]) -> list[str]:
+        """A population as a run store holds it: each program's `codec` text."""
+        return [format_program(program, self.pset) for program in population]
 
     def decode(self, data: bytes) -> Program:
         """A program from `encode` bytes; `StrategyError` if it is not one of this run's."""

@@ -41,6 +41,7 @@ class GeneticAlgorithm(Strategy):
     """
 
     name = "ga"
+    takes: ClassVar[tuple[str, ...]] = ("fitness",)
     own_options: ClassVar[tuple[str, ...]] = ("elites", "tournament_size")
 
     def __init__(
@@ -111,6 +112,7 @@ class HybridStrategy(GeneticAlgorithm):
     """
 
     name = "hybrid"
+    takes: ClassVar[tuple[str, ...]] = ("fitness", "picks")
     own_options: ClassVar[tuple[str, ...]] = ("elites", "tournament_size", "pick_mode")
 
     def __init__(
@@ -174,6 +176,7 @@ class InteractiveStrategy(Strategy):
     """
 
     name = "interactive"
+    takes: ClassVar[tuple[str, ...]] = ("picks",)
 
     def tell(self, picks: npt.ArrayLike) -> None:
         """Record which individuals of the last population a person picked.

@@ -45,11 +45,13 @@ class Strategy(ABC):
 
     Attributes:
         name: the strategy's name in checkpoints and configs.
+        takes: the keywords its ``tell`` takes: ``"fitness"``, ``"picks"`` or both.
         own_options: the subclass's constructor options besides `Variation`'s
             fields (each also an attribute of the same name).
     """
 
     name: ClassVar[str]
+    takes: ClassVar[tuple[str, ...]]
     own_options: ClassVar[tuple[str, ...]] = ()
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
@@ -133,6 +135,14 @@ class Strategy(ABC):
         self._generation += 1
         self._told = False
         return population.copy()
+
+    @abstractmethod
+    def tell(self, *args: Any, **kwargs: Any) -> None:
+        """Judge the last population with what the strategy `takes` (fitness and/or picks)."""
+
+    def genomes(self, population: FloatArray) -> FloatArray:
+        """A population as a run store holds it: the (P, G) array itself."""
+        return population
 
     def _record_tell(
         self, *, fitness: npt.ArrayLike | None = None, picks: npt.ArrayLike = ()

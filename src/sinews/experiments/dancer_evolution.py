@@ -23,6 +23,7 @@ from sinews.evolve import Evaluator, FitnessSpec, SerialEvaluator, chunk_slices
 from sinews.experiments.dancer_fitness import DEFAULT_WEIGHTS, DancerContext, score_chunk
 from sinews.experiments.dancers import dance
 from sinews.experiments.evolution import (
+    FloatStrategies,
     GenerationSummary,
     Scores,
     continue_run,
@@ -202,7 +203,7 @@ def run_dancers(
         run_id,
         scorer=scorer,
         spec=scorer.spec,
-        genome_size=DancerGenome.SIZE,
+        strategies=FloatStrategies(DancerGenome.SIZE),
         generations=generations,
         on_generation=on_generation,
     )
@@ -236,7 +237,7 @@ def pick_dancers(
         run_id,
         generation,
         picks,
-        genome_size=DancerGenome.SIZE,
+        strategies=FloatStrategies(DancerGenome.SIZE),
         scorer=scorer,
         spec=scorer.spec,
     )

@@ -9,15 +9,19 @@ derives from the run seed (`sinews.evolve.seeds`) and the stored numbers are
 exact, a run killed at any moment and resumed gives bit-identical genomes
 and fitness to one that never stopped.
 
-The kind-specific part is a `Scorer`: it turns a population into fitness
-terms (e.g. `sinews.experiments.dancer_evolution`).
+The kind-specific parts are a `Scorer`, which turns a population into
+fitness terms (e.g. `sinews.experiments.dancer_evolution`), and a
+`StrategyKind`, which makes the run's strategy fresh or from a checkpoint:
+`FloatStrategies` for the float-vector strategies of `sinews.evolve`, and one
+for GP programs (`sinews.experiments.gp_runs`). Any strategy with the
+`LoopStrategy` members fits; what it is told comes from its ``takes``.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol
 
@@ -25,24 +29,20 @@ import numpy as np
 import numpy.typing as npt
 
 from sinews.errors import SinewsError
-from sinews.evolve import (
-    FitnessSpec,
-    GeneticAlgorithm,
-    HybridStrategy,
-    InteractiveStrategy,
-    Strategy,
-    individual_seeds,
-    strategy_rng,
-)
-from sinews.evolve.alton import AltonGA
-from sinews.store import GenerationRecord, RunStore
+from sinews.evolve import FitnessSpec, Strategy, individual_seeds, strategy_rng
+from sinews.store import GenerationRecord, Individual, RunStore
 
 __all__ = [
+    "FloatStrategies",
     "GenerationSummary",
+    "LoopStrategy",
     "Scorer",
     "Scores",
+    "StrategyKind",
     "advance",
+    "best_at_full_weight",
     "continue_run",
+    "full_weight_fitness",
     "new_strategy",
     "record_picks",
     "restore_strategy",
@@ -71,8 +71,56 @@ class Scorer(Protocol):
         """Names of the columns of `Scores.terms`."""
         ...
 
-    def __call__(self, genomes: npt.NDArray[np.float64], seeds: npt.NDArray[np.int64]) -> Scores:
-        """Score (P, G) genomes simulated with (P,) seeds."""
+    def __call__(self, genomes: Any, seeds: npt.NDArray[np.int64]) -> Scores:
+        """Score P genomes (as the store holds them, see `LoopStrategy.genomes`) with (P,) seeds."""
+        ...
+
+
+class LoopStrategy(Protocol):
+    """What the loop needs of a strategy (`sinews.evolve.Strategy` and `GPStrategy` have it)."""
+
+    @property
+    def name(self) -> str:
+        """The strategy's name in configs and checkpoints."""
+        ...
+
+    @property
+    def takes(self) -> tuple[str, ...]:
+        """What ``tell`` takes, by keyword: ``"fitness"``, ``"picks"`` or both."""
+        ...
+
+    @property
+    def tell(self) -> Callable[..., None]:
+        """Judge the last population with the keywords named in `takes`."""
+        ...
+
+    @property
+    def parents(self) -> npt.NDArray[np.int64]:
+        """(P, 2) each child's parents in the previous population, -1 for none."""
+        ...
+
+    def ask(self) -> Any:
+        """The next population."""
+        ...
+
+    def genomes(self, population: Any) -> Any:
+        """A population as the run's genome codec stores it."""
+        ...
+
+    def to_bytes(self) -> bytes:
+        """The checkpoint."""
+        ...
+
+
+class StrategyKind(Protocol):
+    """Makes a run's strategy: fresh from its config, or restored from a checkpoint."""
+
+    def new(self, config: Mapping[str, Any], seed: int) -> LoopStrategy:
+        """The strategy a run starts with (``config`` as stored with the run)."""
+        ...
+
+    def restore(self, checkpoint: bytes) -> LoopStrategy:
+        """The strategy exactly as it was when it saved ``checkpoint``."""
         ...
 
 
@@ -97,7 +145,7 @@ class GenerationSummary:
     seconds: float
 
 
-def new_strategy(config: dict[str, Any], *, genome_size: int, seed: int) -> Strategy:
+def new_strategy(config: Mapping[str, Any], *, genome_size: int, seed: int) -> Strategy:
     """The strategy a run starts with, from the run's config.
 
     Args:
@@ -115,23 +163,46 @@ def new_strategy(config: dict[str, Any], *, genome_size: int, seed: int) -> Stra
     )
 
 
-def _tell(strategy: Strategy, fitness: npt.NDArray[np.float64] | None, picks: list[int]) -> None:
-    if isinstance(strategy, InteractiveStrategy):
-        strategy.tell(picks)
-    elif isinstance(strategy, HybridStrategy | AltonGA):
-        strategy.tell(_need(fitness), picks)
-    elif isinstance(strategy, GeneticAlgorithm):
-        if picks:
-            raise SinewsError("this run's strategy (ga) does not take picks; use hybrid")
-        strategy.tell(_need(fitness))
-    else:
-        raise SinewsError(f"cannot continue a {strategy.name!r} strategy")
+@dataclass(frozen=True)
+class FloatStrategies:
+    """The float-vector strategies (``ga``, ``hybrid``, ``interactive``, ``alton``).
+
+    Attributes:
+        size: G, genes per genome.
+        mutation: a mutation strength that overrides the restored strategy's
+            (the studio's slider), or None.
+    """
+
+    size: int
+    mutation: float | None = None
+
+    def new(self, config: Mapping[str, Any], seed: int) -> Strategy:
+        """The strategy named in ``config`` (see `new_strategy`)."""
+        return new_strategy(config, genome_size=self.size, seed=seed)
+
+    def restore(self, checkpoint: bytes) -> Strategy:
+        """`Strategy.from_bytes`, with `mutation` applied."""
+        strategy = Strategy.from_bytes(checkpoint)
+        if self.mutation is not None:
+            strategy.variation = dataclasses.replace(
+                strategy.variation, mutation_sigma=self.mutation
+            )
+        return strategy
 
 
-def _need(fitness: npt.NDArray[np.float64] | None) -> npt.NDArray[np.float64]:
-    if fitness is None:
-        raise SinewsError("this generation was not scored, so the strategy cannot be told")
-    return fitness
+def _tell(
+    strategy: LoopStrategy, fitness: npt.NDArray[np.float64] | None, picks: list[int]
+) -> None:
+    told: dict[str, Any] = {}
+    if "fitness" in strategy.takes:
+        if fitness is None:
+            raise SinewsError("this generation was not scored, so the strategy cannot be told")
+        told["fitness"] = fitness
+    if "picks" in strategy.takes:
+        told["picks"] = picks
+    elif picks:
+        raise SinewsError(f"this run's strategy ({strategy.name}) does not take picks")
+    strategy.tell(**told)
 
 
 def advance(
@@ -140,7 +211,7 @@ def advance(
     *,
     scorer: Scorer | None,
     spec: FitnessSpec | None,
-    strategy: Strategy,
+    strategy: LoopStrategy,
     picks: list[int] | None = None,
 ) -> GenerationSummary:
     """Make, score and store the next generation of a run.
@@ -163,7 +234,7 @@ def advance(
     last = store.last_generation(run_id)
     if last >= 0:
         _tell(strategy, store.generation_fitness(run_id, last), list(picks or []))
-    genomes = strategy.ask()
+    genomes = strategy.genomes(strategy.ask())
     checkpoint = strategy.to_bytes()
     generation = last + 1
     seeds = individual_seeds(info.seed, generation, len(genomes))
@@ -201,13 +272,13 @@ def advance(
     )
 
 
-def restore_strategy(store: RunStore, run_id: int, *, genome_size: int) -> Strategy:
+def restore_strategy(store: RunStore, run_id: int, *, strategies: StrategyKind) -> LoopStrategy:
     """The run's strategy: from its last checkpoint, or fresh from its config."""
     info = store.run(run_id)
     last = store.last_generation(run_id)
     if last < 0:
-        return new_strategy(info.config, genome_size=genome_size, seed=info.seed)
-    return Strategy.from_bytes(store.checkpoint(run_id, last))
+        return strategies.new(info.config, info.seed)
+    return strategies.restore(store.checkpoint(run_id, last))
 
 
 def continue_run(
@@ -216,7 +287,7 @@ def continue_run(
     *,
     scorer: Scorer,
     spec: FitnessSpec,
-    genome_size: int,
+    strategies: StrategyKind,
     generations: int | None = None,
     picks: Callable[[int], Sequence[int]] | None = None,
     on_generation: Callable[[GenerationSummary], None] | None = None,
@@ -224,8 +295,9 @@ def continue_run(
     """Run generations until the run has ``config["generations"]``, then mark it finished.
 
     Works the same for a new run (no generation stored yet) and for one
-    interrupted at any point. An interactive run stops after generation 0
-    and stays ``running``: it advances by a person's picks (`record_picks`).
+    interrupted at any point. A run whose strategy takes no fitness
+    (interactive) stops after generation 0 and stays ``running``: it advances
+    by a person's picks (`record_picks`).
     An exception marks the run ``failed`` (it can still be resumed).
 
     Args:
@@ -233,7 +305,7 @@ def continue_run(
         run_id: the run.
         scorer: scores each new generation.
         spec: combines the terms into fitness.
-        genome_size: G.
+        strategies: makes the run's strategy (e.g. ``FloatStrategies(G)``).
         generations: a new total, to extend the run (None keeps the stored one).
         picks: ``picks(g)`` gives the individuals of generation g a person
             marked (told with g's fitness when breeding g + 1), for strategies
@@ -251,9 +323,9 @@ def continue_run(
     target = int(store.run(run_id).config["generations"])
     store.set_status(run_id, "running")
     try:
-        strategy = restore_strategy(store, run_id, genome_size=genome_size)
+        strategy = restore_strategy(store, run_id, strategies=strategies)
         while (last := store.last_generation(run_id)) + 1 < target:
-            if last >= 0 and isinstance(strategy, InteractiveStrategy):
+            if last >= 0 and "fitness" not in strategy.takes:
                 return
             kept = list(picks(last)) if picks is not None and last >= 0 else None
             summary = advance(
@@ -273,17 +345,16 @@ def record_picks(
     generation: int,
     picks: list[int],
     *,
-    genome_size: int,
+    strategies: StrategyKind,
     scorer: Scorer | None = None,
     spec: FitnessSpec | None = None,
-    mutation: float | None = None,
 ) -> GenerationSummary:
     """Record a person's picks in ``generation`` and breed the next one (one transaction).
 
     The studio's hook for interactive (and hybrid) runs: the picks are told
-    to the strategy restored from ``generation``'s checkpoint, the next
-    generation is asked for (with mutation strength ``mutation`` when given),
-    scored if a scorer is given, and stored with the picked flags.
+    to the strategy restored from ``generation``'s checkpoint (by
+    ``strategies``, which may set its mutation strength), the next generation
+    is asked for, scored if a scorer is given, and stored with the picked flags.
 
     Raises:
         SinewsError: ``generation`` is not the run's last one (someone else
@@ -292,7 +363,34 @@ def record_picks(
     last = store.last_generation(run_id)
     if generation != last:
         raise SinewsError(f"run {run_id}: picks are for generation {last}, not {generation}")
-    strategy = restore_strategy(store, run_id, genome_size=genome_size)
-    if mutation is not None:
-        strategy.variation = dataclasses.replace(strategy.variation, mutation_sigma=mutation)
+    strategy = restore_strategy(store, run_id, strategies=strategies)
     return advance(store, run_id, scorer=scorer, spec=spec, strategy=strategy, picks=picks)
+
+
+def full_weight_fitness(
+    terms: Sequence[Mapping[str, float | None]], failed: npt.ArrayLike, spec: FitnessSpec
+) -> npt.NDArray[np.float64]:
+    """(n,) the fitness of stored term values at full style weight (-inf: failed or missing)."""
+    values = np.array(
+        [[np.nan if t.get(name) is None else t[name] for name in spec.names] for t in terms],
+        dtype=np.float64,
+    ).reshape(len(terms), len(spec.names))
+    return spec.combine(values, np.asarray(failed, dtype=bool), spec.phase_in.full)
+
+
+def best_at_full_weight(store: RunStore, run_id: int, spec: FitnessSpec) -> Individual:
+    """The run's best individual rated by its stored terms at full style weight.
+
+    With style phased in, an early generation's best is rated by the main goal
+    alone and may outscore every later one; rated at full weight, as the last
+    generations are, it does not. Without a phase-in this is `RunStore.best`.
+    The earliest individual wins ties.
+
+    Raises:
+        StoreError: the run has no scored individuals.
+    """
+    table = store.scores(run_id)
+    if not len(table.fitness):
+        return store.best(run_id)  # raises, naming the run
+    k = int(np.argmax(full_weight_fitness(table.terms, table.failed, spec)))
+    return store.individuals(run_id, int(table.generation[k]))[int(table.index[k])]

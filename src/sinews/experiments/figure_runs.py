@@ -6,8 +6,9 @@ Each controller kind is one module with an ``EXPERIMENT`` object that follows
 (e.g. ``gp``) plugs into ``sinews evolve FIGURE --controller KIND``, ``sinews
 runs resume``, ``render`` and the studio by adding one entry.
 
-The main fitness term of every figure run is the paper's: the distance
-travelled, ``|x_final - x_initial|`` of the figure's root, in metres.
+Spring-net runs (seed 001) are rated by the distance travelled,
+``|x_final - x_initial|`` of the figure's root, in metres; GP runs (seed 003)
+by a task's goal and style terms.
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ from __future__ import annotations
 import importlib
 import os
 import re
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Container, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Protocol
@@ -27,7 +28,7 @@ from sinews.errors import SinewsError
 from sinews.evolve import Evaluator
 from sinews.experiments.evolution import GenerationSummary
 from sinews.figures import Figure, RolloutResult, humanoid, luxo, snake
-from sinews.render.figure import NetPanel
+from sinews.render.figure import NetPanel, TaskScene
 from sinews.store import Individual, RunInfo, RunStore
 from sinews.trajectory import Trajectory
 
@@ -36,6 +37,7 @@ __all__ = [
     "FIGURE_EXPERIMENTS",
     "FigureExperiment",
     "Replay",
+    "check_options",
     "distance_travelled",
     "experiment_of",
     "figure_experiment",
@@ -47,7 +49,10 @@ __all__ = [
 FIGURES: dict[str, Callable[[], Figure]] = {"snake": snake, "luxo": luxo, "humanoid": humanoid}
 """The built-in figures by name."""
 
-FIGURE_EXPERIMENTS: dict[str, str] = {"springnet": "sinews.experiments.springnet_figures"}
+FIGURE_EXPERIMENTS: dict[str, str] = {
+    "springnet": "sinews.experiments.springnet_figures",
+    "gp": "sinews.experiments.gp_runs",
+}
 """Controller kind → the module whose ``EXPERIMENT`` runs it (imported when first used)."""
 
 
@@ -73,6 +78,7 @@ class Replay:
         trajectory: its recorded motion (``qpos`` filled).
         distance: signed distance its root travelled, m.
         panel: its controller's state to draw beside the figure, or None.
+        scene: its task's marks (an X, a limbo post, a target), or None.
     """
 
     individual: Individual
@@ -80,10 +86,17 @@ class Replay:
     trajectory: Trajectory
     distance: float
     panel: NetPanel | None = None
+    scene: TaskScene | None = None
 
 
 class FigureExperiment(Protocol):
-    """What a controller kind offers the CLI and the studio."""
+    """What a controller kind offers the CLI and the studio.
+
+    Attributes:
+        fitness_label: what its fitness measures, for plots.
+    """
+
+    fitness_label: str
 
     def create_run(
         self,
@@ -130,6 +143,10 @@ class FigureExperiment(Protocol):
         """A stored individual's controller as a JSON-safe document (``runs best``)."""
         ...
 
+    def genome_text(self, individual: Individual) -> str | None:
+        """A stored individual's controller as readable text (``runs show``), or None."""
+        ...
+
 
 def figure_experiment(controller: str) -> FigureExperiment:
     """The experiment of a controller kind (see `FIGURE_EXPERIMENTS`)."""
@@ -141,6 +158,13 @@ def figure_experiment(controller: str) -> FigureExperiment:
         FIGURE_EXPERIMENTS[controller]
     ).EXPERIMENT
     return experiment
+
+
+def check_options(options: Mapping[str, Any], known: Container[str], controller: str) -> None:
+    """`SinewsError` naming the first option given (not None) that ``controller`` runs lack."""
+    for name, value in options.items():
+        if value is not None and name not in known:
+            raise SinewsError(f"--{name.replace('_', '-')} does not apply to {controller} runs")
 
 
 def experiment_of(info: RunInfo) -> FigureExperiment | None:

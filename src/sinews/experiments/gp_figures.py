@@ -40,9 +40,11 @@ __all__ = [
     "GPGeneration",
     "GPRun",
     "GPSettings",
+    "Measured",
     "Scored",
     "evaluate_programs",
     "fitness_spec",
+    "measure_programs",
     "primitive_set",
     "run_gp",
     "wiring",
@@ -84,6 +86,23 @@ class GPSettings:
     nthread: int | None = None
     parallel_interpreter: bool = False
     record_hz: float = 60.0
+
+
+@dataclass(frozen=True, eq=False)
+class Measured:
+    """What a population of programs did.
+
+    Attributes:
+        terms: (P, K) term values, columns in ``task.weights`` order.
+        failed: (P,) True where the simulation blew up.
+        nonfinite: (P,) NaN/inf tree values that were clamped.
+        result: the rollout.
+    """
+
+    terms: FloatArray
+    failed: npt.NDArray[np.bool_]
+    nonfinite: npt.NDArray[np.int64]
+    result: RolloutResult
 
 
 @dataclass(frozen=True, eq=False)
@@ -174,6 +193,29 @@ def fitness_spec(task: Task, settings: GPSettings) -> FitnessSpec:
     return FitnessSpec(main="distance", weights=task.weights, phase_in=settings.phase_in)
 
 
+def measure_programs(
+    task: Task, programs: Sequence[Program], settings: GPSettings, *, record: bool = False
+) -> Measured:
+    """Simulate programs (one batched rollout) and measure the task's terms.
+
+    A program's terms depend on the program alone, not on the batch.
+
+    Args:
+        task: the task.
+        programs: P programs with one tree per ``task.joints``.
+        settings: rates, duration, threads.
+        record: keep the motion (for trajectories).
+    """
+    controller = GPController(programs, wiring(task), parallel=settings.parallel_interpreter)
+    meter = TaskMeter(task, len(programs))
+    result = rollout(
+        task.figure, controller, len(programs), settings.seconds or task.seconds,
+        control_hz=settings.control_hz, physics_hz=settings.physics_hz, record=record,
+        record_hz=settings.record_hz, nthread=settings.nthread, observer=meter,
+    )  # fmt: skip
+    return Measured(meter.terms(), result.failed, controller.nonfinite.copy(), result)
+
+
 def evaluate_programs(
     task: Task,
     programs: Sequence[Program],
@@ -191,16 +233,9 @@ def evaluate_programs(
         settings: rates, duration, threads.
         record: keep the motion (for trajectories).
     """
-    controller = GPController(programs, wiring(task), parallel=settings.parallel_interpreter)
-    meter = TaskMeter(task, len(programs))
-    result = rollout(
-        task.figure, controller, len(programs), settings.seconds or task.seconds,
-        control_hz=settings.control_hz, physics_hz=settings.physics_hz, record=record,
-        record_hz=settings.record_hz, nthread=settings.nthread, observer=meter,
-    )  # fmt: skip
-    terms = meter.terms()
-    fitness = fitness_spec(task, settings).combine(terms, result.failed, generation)
-    return Scored(fitness, terms, result.failed, controller.nonfinite.copy(), result)
+    done = measure_programs(task, programs, settings, record=record)
+    fitness = fitness_spec(task, settings).combine(done.terms, done.failed, generation)
+    return Scored(fitness, done.terms, done.failed, done.nonfinite, done.result)
 
 
 def run_gp(

@@ -19,12 +19,13 @@ import numpy as np
 from sinews.errors import SinewsError
 from sinews.evolve import Evaluator, SerialEvaluator
 from sinews.experiments.evolution import (
+    FloatStrategies,
     GenerationSummary,
     continue_run,
     new_strategy,
     record_picks,
 )
-from sinews.experiments.figure_runs import FigureExperiment, Replay, make_figure
+from sinews.experiments.figure_runs import FigureExperiment, Replay, check_options, make_figure
 from sinews.experiments.run_config import EvolutionConfig, build_config
 from sinews.experiments.springnet_fitness import (
     TERMS,
@@ -60,6 +61,8 @@ _KIND_KEYS = ("figure", "seconds", "masses", "physics_hz", "control_hz", "keep")
 class SpringNetExperiment:
     """Spring-net runs for the CLI and the studio (see `FigureExperiment`)."""
 
+    fitness_label = "distance (m)"
+
     def create_run(
         self,
         store: RunStore,
@@ -78,6 +81,7 @@ class SpringNetExperiment:
                 generations, seed, seconds, masses, strategy, keep (generation →
                 indices that must survive it)...
         """
+        check_options(options, DEFAULTS, CONTROLLER)
         config, extra = build_config(
             file_values=file_values,
             options={**options, "figure": figure},
@@ -116,7 +120,7 @@ class SpringNetExperiment:
             run_id,
             scorer=scorer,
             spec=scorer.spec,
-            genome_size=settings.encoding.size,
+            strategies=FloatStrategies(settings.encoding.size),
             generations=generations,
             picks=lambda generation: keep.get(str(generation), []),
             on_generation=on_generation,
@@ -135,7 +139,7 @@ class SpringNetExperiment:
         settings, scorer = _scorer(store.run(run_id), evaluator or SerialEvaluator())
         return record_picks(
             store, run_id, generation, picks,
-            genome_size=settings.encoding.size, scorer=scorer, spec=scorer.spec,
+            strategies=FloatStrategies(settings.encoding.size), scorer=scorer, spec=scorer.spec,
         )  # fmt: skip
 
     def replay(
@@ -190,6 +194,10 @@ class SpringNetExperiment:
             "offset": controller.offset.tolist(),
             "ts": controller.ts,
         }
+
+    def genome_text(self, individual: Individual) -> str | None:
+        """None: a net has no short text form (see `genome_document`)."""
+        return None
 
 
 EXPERIMENT: FigureExperiment = SpringNetExperiment()

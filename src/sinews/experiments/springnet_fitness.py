@@ -10,8 +10,7 @@ paper's, the distance travelled ``|x_final - x_initial|``.
 The simulation is deterministic and a net's motion does not depend on who
 else is in the batch, so a genome's fitness depends on its genes alone: the
 scorer does not simulate the survivors of the last generation again (a
-fifth of the work of the paper's GA), and a resumed run, which starts with
-an empty memory, gets the same numbers.
+fifth of the work of the paper's GA; see `sinews.experiments.score_memory`).
 """
 
 from __future__ import annotations
@@ -25,10 +24,11 @@ import numpy.typing as npt
 
 from sinews.control.springnet import SpringNetController
 from sinews.errors import SinewsError
-from sinews.evolve import Evaluator, FitnessSpec, SerialEvaluator, chunk_slices
+from sinews.evolve import Evaluator, FitnessSpec, SerialEvaluator
 from sinews.evolve.alton import SpringNetEncoding
 from sinews.experiments.evolution import Scores
 from sinews.experiments.figure_runs import FIGURES, distance_travelled, make_figure
+from sinews.experiments.score_memory import ScoreMemory, score_in_chunks
 from sinews.figures import Figure, RolloutResult, rollout
 
 __all__ = [
@@ -208,7 +208,7 @@ class SpringNetScorer:
     settings: SpringNetSettings
     spec: FitnessSpec
     evaluator: Evaluator
-    _last: dict[bytes, tuple[float, bool]] = field(default_factory=dict, repr=False)
+    _memory: ScoreMemory = field(default_factory=ScoreMemory, repr=False)
 
     @property
     def term_names(self) -> tuple[str, ...]:
@@ -217,28 +217,10 @@ class SpringNetScorer:
 
     def __call__(self, genomes: FloatArray, seeds: npt.NDArray[np.int64]) -> Scores:
         """Score (P, G) genes (the seeds are unused: the simulation has no noise)."""
-        keys = [row.tobytes() for row in genomes]
-        first: dict[bytes, int] = {}
-        for index, key in enumerate(keys):
-            first.setdefault(key, index)
-        new = [k for k in first if k not in self._last]
-        if new:
-            rows = np.array([first[k] for k in new])
-            nthread = None if isinstance(self.evaluator, SerialEvaluator) else 1
-            context = ChunkContext(self.settings, nthread)
-            slices = chunk_slices(len(rows), self.evaluator.n_workers)
-            parts = self.evaluator.map(score_chunk, context, [genomes[rows[s]] for s in slices])
-            distance = np.concatenate([p.terms[:, 0] for p in parts])
-            failed = np.concatenate([p.failed for p in parts])
-            known = {
-                **self._last,
-                **dict(zip(new, zip(distance, failed, strict=True), strict=True)),
-            }
-        else:
-            known = self._last
-        self._last = {k: known[k] for k in keys}
-        values = [self._last[k] for k in keys]
-        return Scores(
-            terms=np.array([[d] for d, _ in values], dtype=np.float64).reshape(-1, 1),
-            failed=np.array([f for _, f in values], dtype=bool),
-        )
+        nthread = None if isinstance(self.evaluator, SerialEvaluator) else 1
+        context = ChunkContext(self.settings, nthread)
+
+        def simulate(rows: npt.NDArray[np.intp]) -> Scores:
+            return score_in_chunks(self.evaluator, score_chunk, context, genomes[rows])
+
+        return self._memory.score([row.tobytes() for row in genomes], simulate)

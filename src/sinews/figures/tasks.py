@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from sinews.figures._mujoco import require_mujoco
 from sinews.figures.figure import Figure, FigureError
 from sinews.figures.humanoid import humanoid
 from sinews.figures.luxo import luxo
@@ -31,6 +32,7 @@ from sinews.figures.mjcf import fmt
 from sinews.figures.terms import TERMS, TaskMeter
 
 __all__ = [
+    "LIMBO_SHARE",
     "TASKS",
     "TERMS",
     "Goal",
@@ -40,6 +42,7 @@ __all__ = [
     "luxo_hop",
     "luxo_limbo",
     "make_task",
+    "standing_height",
 ]
 
 FloatArray = npt.NDArray[np.float64]
@@ -144,6 +147,28 @@ class Task:
         return weights, offset
 
 
+def standing_height(figure: Figure) -> float:
+    """How tall the figure stands at rest: the top of its highest geom, m above the floor."""
+    mujoco = require_mujoco()
+    model = figure.model()
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    tops = []
+    for g in range(model.ngeom):
+        if model.geom_bodyid[g] == 0:
+            continue
+        up = data.geom_xmat[g].reshape(3, 3)[2]  # the world z of each local axis
+        size, kind = model.geom_size[g], model.geom_type[g]
+        if kind == mujoco.mjtGeom.mjGEOM_SPHERE:
+            reach = size[0]
+        elif kind == mujoco.mjtGeom.mjGEOM_CAPSULE:
+            reach = abs(up[2]) * size[1] + size[0]
+        else:  # the geom's bounding box
+            reach = float(np.abs(up) @ model.geom_aabb[g, 3:]) + float(up @ model.geom_aabb[g, :3])
+        tops.append(data.geom_xpos[g, 2] + reach)
+    return float(max(tops))
+
+
 # -- the built-in tasks --------------------------------------------------------
 
 STYLE = {"early": 0.2, "still": 0.5, "head": 1.0, "fallen": 1.0, "neutral": 0.1, "energy": 0.0}
@@ -178,8 +203,12 @@ def luxo_hop(target: float = 1.0, *, seconds: float = 5.0) -> Task:
     )
 
 
+LIMBO_SHARE = 0.8
+"""The limbo pole's default height: this share of the lamp's standing height."""
+
+
 def luxo_limbo(
-    pole_height: float = 0.3,
+    pole_height: float | None = None,
     *,
     target: float = 1.0,
     pole_x: float | None = None,
@@ -190,12 +219,15 @@ def luxo_limbo(
 
     The pole lies across the lamp's path at ``pole_x`` (default: halfway); it
     is solid, and any contact with it costs the ``touch`` term ("a large
-    penalty for hitting his head on the limbo pole").
+    penalty for hitting his head on the limbo pole"). By default its underside
+    is at `LIMBO_SHARE` of the lamp's `standing_height` (0.33 m of 0.41 m).
     """
+    lamp = luxo()
+    if pole_height is None:
+        pole_height = round(LIMBO_SHARE * standing_height(lamp), 4)
     where = target / 2 if pole_x is None else pole_x
     if not 0.0 < pole_height < 1.0 or not 0.0 < where / target < 1.0:
         raise FigureError("luxo-limbo: the pole must be 0-1 m high and between the lamp and the X")
-    lamp = luxo()
     root = ET.fromstring(lamp.xml)
     world = root.find("worldbody")
     assert world is not None

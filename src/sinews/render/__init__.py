@@ -18,6 +18,7 @@ from sinews.render.figure import (
     FigureGeometry,
     FigurePainter,
     NetPanel,
+    TaskScene,
     render_figure,
     render_figure_sequence,
 )
@@ -52,6 +53,7 @@ __all__ = [
     "RenderError",
     "Style",
     "SvgCanvas",
+    "TaskScene",
     "View",
     "contact_sheet",
     "iter_frames",

@@ -8,11 +8,12 @@ on any `Canvas`: the ground with a metre scale, a start marker where the root
 began, an arrow from it to the root's x now labelled with the distance, and,
 above, an optional `NetPanel`: a spring net's masses as dots moving on its
 axis, the springs as arcs, each driving mass in the colour of the part its
-joint moves.
+joint moves; and an optional `TaskScene` (in `sinews.render.figure_scene`):
+the X to hop to, a limbo post, a point to reach.
 
-The camera shows the whole motion when it is short; when the figure travels
-more than three times its own size, it follows the figure at a fixed scale
-(see `FigurePainter`).
+The camera shows the whole motion when it is short, or when it stays on the
+task's scene; when the figure travels more than three times its own size,
+it follows the figure at a fixed scale (see `FigurePainter`).
 Still pictures (PNG, SVG) are strobe images: poses at even times, older ones
 fainter, with the whole path in view.
 """
@@ -39,6 +40,7 @@ from sinews.render.figure_geometry import (
     FigureGeometry,
 )
 from sinews.render.figure_panel import NetPanel, draw_panel
+from sinews.render.figure_scene import TaskScene, draw_scene_back, draw_scene_front
 from sinews.render.raster import RasterCanvas
 from sinews.render.style import Style, default_colors
 from sinews.render.svg import SvgCanvas
@@ -49,6 +51,7 @@ __all__ = [
     "FigureGeometry",
     "FigurePainter",
     "NetPanel",
+    "TaskScene",
     "render_figure",
     "render_figure_sequence",
 ]
@@ -80,6 +83,7 @@ class FigurePainter:
         style: colours; None for `Style()`.
         still: one view of the whole motion (for strobe pictures) instead of a
             follow camera.
+        scene: the task's marks (an X, a limbo post, a target), or None.
 
     Attributes:
         poses: where every geom is in each frame.
@@ -97,12 +101,16 @@ class FigurePainter:
         title: str | None = None,
         style: Style | None = None,
         still: bool = False,
+        scene: TaskScene | None = None,
     ) -> None:
         if traj.qpos is None:
             raise RenderError("a figure trajectory needs qpos")
         if panel is not None and len(panel.positions) != traj.n_frames:
             raise RenderError(f"the panel has {len(panel.positions)} frames, not {traj.n_frames}")
+        if scene is not None:
+            scene.check_sites(geometry.figure.sites)
         self.geometry, self.traj, self.panel, self.title = geometry, traj, panel, title
+        self.scene = scene
         self.style = style or Style()
         self.width, self.height = _pixels(size)
         self.poses = geometry.poses(traj.qpos)
@@ -125,7 +133,9 @@ class FigurePainter:
         The figure's size is the largest side of its own box over the frames. A
         path longer or higher than `_FOLLOW_AFTER` sizes is followed (smoothed
         over half a second) in a window that many sizes wide and at most half
-        as high, the ground at the bottom unless the figure flies above it.
+        as high, the ground at the bottom unless the figure flies above it;
+        a path that stays within a size of the stage (from the start to the
+        scene's farthest mark) is not.
         """
         usable = self.height - self._panel_px - _GROUND_SHARE * (self.height - self._panel_px)
         ground_row = self.height - _GROUND_SHARE * (self.height - self._panel_px)
@@ -135,7 +145,14 @@ class FigurePainter:
         x_hi = max(float(boxes[:, 2].max()), float(self.root_x[0])) + pad
         y_low, y_top = min(float(boxes[:, 1].min()), 0.0), float(boxes[:, 3].max()) + pad
         reach = _FOLLOW_AFTER * size
-        if still or (x_hi - x_lo <= reach and y_top - y_low <= reach):
+        marks = self.scene.points() if self.scene is not None else np.zeros((0, 2))
+        on_stage = False
+        if len(marks):  # the stage: from the start to the farthest mark
+            stage = np.append(marks[:, 0], self.root_x[0])
+            on_stage = x_lo >= stage.min() - size and x_hi <= stage.max() + size
+            x_lo, x_hi = min(x_lo, stage.min() - 2 * pad), max(x_hi, stage.max() + 2 * pad)
+            y_top = max(y_top, marks[:, 1].max() + pad)
+        if still or on_stage or (x_hi - x_lo <= reach and y_top - y_low <= reach):
             scale = min(self.width / (x_hi - x_lo), (usable - 4.0) / (y_top - y_low))
             left = 0.5 * (x_lo + x_hi) - 0.5 * self.width / scale
             view = View(self.width, self.height, scale, left, y_low + ground_row / scale)
@@ -166,10 +183,16 @@ class FigurePainter:
         canvas.clear(self.style.background)
         self._draw_ground(canvas, view)
         self._draw_start(canvas, view)
+        if self.scene is not None:
+            draw_scene_back(canvas, self.scene, view, self._text_px)
         for k, frame in enumerate(chosen):  # oldest first, fainter the older
             age = len(chosen) - 1 - k
             fade = 0.0 if age == 0 else 0.45 + 0.45 * age / len(chosen)
             self._draw_body(canvas, view, frame, fade)
+        if self.scene is not None:
+            names = self.geometry.figure.sites
+            sites = dict(zip(names, self.poses.sites[last], strict=True))
+            draw_scene_front(canvas, self.scene, view, sites, self._text_px)
         self._draw_markers(canvas, view, last)
         if self.panel is not None:
             draw_panel(
@@ -320,6 +343,7 @@ def render_figure(
     fps: float | None = None,
     strobe: int = 8,
     style: Style | None = None,
+    scene: TaskScene | None = None,
 ) -> Path:
     """Draw a figure's motion: an ``.mp4`` video, or a ``.png``/``.svg`` strobe picture.
 
@@ -333,6 +357,7 @@ def render_figure(
         fps: highest video frame rate (default: the trajectory's).
         strobe: poses in a still picture (evenly spaced, the last frame last).
         style: colours.
+        scene: the task's marks.
 
     Returns:
         ``path``.
@@ -340,7 +365,7 @@ def render_figure(
     suffix = suffix_of(path, (".mp4", ".png", ".svg"))
     geometry = figure if isinstance(figure, FigureGeometry) else FigureGeometry.of(figure)
     painter = FigurePainter(geometry, traj, size=size, panel=panel, title=title, style=style,
-                            still=suffix != ".mp4")  # fmt: skip
+                            still=suffix != ".mp4", scene=scene)  # fmt: skip
     if suffix == ".mp4":
         return render_figure_sequence([painter], path, fps=fps)
     frames = np.unique(np.linspace(0, traj.n_frames - 1, max(1, strobe)).round().astype(int))

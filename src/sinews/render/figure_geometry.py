@@ -2,8 +2,9 @@
 
 `FigureGeometry` reads the capsules, boxes, spheres, cylinders and ellipsoids
 of a figure's compiled MuJoCo model; `FigureGeometry.poses` turns a
-trajectory's ``qpos`` frames into each geom's centre and axes by forward
-kinematics. Planar figures turn about y only, so two axes describe a geom.
+trajectory's ``qpos`` frames into each geom's centre and axes (and each
+tracked site's position) by forward kinematics. Planar figures turn about y
+only, so two axes describe a geom.
 """
 
 from __future__ import annotations
@@ -33,11 +34,13 @@ class GeomPoses:
         centers: (T, K, 2) geom centres.
         ax: (T, K, 2) each geom's local x axis.
         az: (T, K, 2) each geom's local z axis (a capsule's length runs along it).
+        sites: (T, n_sites, 2) the figure's tracked sites (``figure.sites``).
     """
 
     centers: FloatArray
     ax: FloatArray
     az: FloatArray
+    sites: FloatArray
 
 
 @dataclass(frozen=True, eq=False)
@@ -99,14 +102,17 @@ class FigureGeometry:
             raise RenderError(f"qpos must have shape (T, {model.nq}), got {frames.shape}")
         data = mujoco.MjData(model)
         keep = np.flatnonzero(model.geom_bodyid > 0)
+        site_ids = [model.site(name).id for name in self.figure.sites]
         centers = np.empty((len(frames), len(keep), 2))
         axes = np.empty((len(frames), len(keep), 2, 3))
+        sites = np.empty((len(frames), len(site_ids), 2))
         for t, q in enumerate(frames):
             data.qpos[:] = q
             mujoco.mj_kinematics(model, data)
             centers[t] = data.geom_xpos[keep][:, [0, 2]]
             axes[t] = data.geom_xmat[keep].reshape(-1, 3, 3)[:, [0, 2], :]
-        return GeomPoses(centers, axes[..., 0], axes[..., 2])
+            sites[t] = data.site_xpos[site_ids][:, [0, 2]]
+        return GeomPoses(centers, axes[..., 0], axes[..., 2], sites)
 
     def extents(self, poses: GeomPoses) -> FloatArray:
         """(T, 4) each frame's bounds (x_min, y_min, x_max, y_max) over all geoms."""

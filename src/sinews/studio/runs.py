@@ -36,7 +36,7 @@ from sinews.experiments.dancer_evolution import (
     dancer_config,
     run_music,
 )
-from sinews.experiments.evolution import advance, new_strategy, record_picks
+from sinews.experiments.evolution import FloatStrategies, advance, new_strategy, record_picks
 from sinews.experiments.run_config import EvolutionConfig
 from sinews.music import MusicFeatures, analyse_file
 from sinews.store import GenerationRecord, Individual, RunInfo, RunStore
@@ -186,9 +186,8 @@ class StudioRuns:
             raise StudioError(f"mutation must be in [0, {MAX_MUTATION}], got {mutation}")
         if generation < run.last:
             run_id = self.branch(run_id, generation)
-        summary = record_picks(
-            self.store, run_id, generation, chosen, genome_size=DancerGenome.SIZE, mutation=mutation
-        )
+        strategies = FloatStrategies(DancerGenome.SIZE, mutation=mutation)
+        summary = record_picks(self.store, run_id, generation, chosen, strategies=strategies)
         return run_id, summary.generation
 
     def branch(self, run_id: int, generation: int, *, song: Song | None = None) -> int:

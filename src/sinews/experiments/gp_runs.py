@@ -1,0 +1,269 @@
+"""Evolving GP controllers for the figures' motion tasks (seed 003): a stored run's life.
+
+A run of kind ``"gp-<figure>"`` evolves Gritz & Hahn's controller programs for
+one task of `sinews.figures.tasks` — the lamp hopping to an X (``hop``), the
+limbo (``limbo``), the humanoid touching a point (``reach``) or its nose
+(``nose``) — with `GPStrategy` through the generic resumable loop: by default
+the paper's 250 programs × 50 generations, 90 % crossover and 10 %
+reproduction, style phased in from generation 5 to the last. Settings,
+strategy and scoring are in `sinews.experiments.gp_scoring`; this module is
+start, run or resume, replay with the task's scene, and what the CLI shows
+of a program (its S-expression).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any
+
+from sinews.control.gp import BASIC_FUNCTIONS, GENOME_CODEC
+from sinews.errors import SinewsError
+from sinews.evolve import Evaluator
+from sinews.experiments.evolution import GenerationSummary, continue_run
+from sinews.experiments.figure_runs import FigureExperiment, Replay, check_options
+from sinews.experiments.gp_figures import measure_programs
+from sinews.experiments.gp_scoring import GPRunSettings, GPScorer, GPStrategies
+from sinews.experiments.run_config import ConfigError, EvolutionConfig, build_config
+from sinews.figures.tasks import Task, make_task
+from sinews.render.figure_scene import TaskScene
+from sinews.store import Individual, RunInfo, RunStore
+
+__all__ = ["CONTROLLER", "DEFAULTS", "EXPERIMENT", "TASKS", "GPExperiment", "scene_of"]
+
+CONTROLLER = "gp"
+TASKS: dict[str, dict[str, tuple[str, dict[str, Any]]]] = {
+    "luxo": {"hop": ("luxo-hop", {}), "limbo": ("luxo-limbo", {})},
+    "humanoid": {"reach": ("humanoid-reach", {}), "nose": ("humanoid-reach", {"target": "nose"})},
+}
+"""Figure → the task names of ``--task`` → the built-in task and its preset options."""
+DEFAULTS: dict[str, Any] = {
+    "population": 250,
+    "generations": 50,
+    "seed": 0,
+    "weights": {},
+    "strategy": "gp",
+    "task": None,
+    "target": None,
+    "pole_height": None,
+    "seconds": None,
+    "control_hz": 100,
+    "physics_hz": 1000,
+    "functions": list(BASIC_FUNCTIONS),
+    "erc_range": [-1.0, 1.0],
+}
+"""The paper's run (250 programs, 50 generations) unless told otherwise; the task's
+terms make the fitness, and style is phased in from a tenth of the run to its end."""
+_KIND_KEYS = ("task", "target", "pole_height", "seconds", "control_hz", "physics_hz",
+              "functions", "erc_range")  # fmt: skip
+
+
+class GPExperiment:
+    """GP runs for the CLI (see `FigureExperiment`)."""
+
+    fitness_label = "fitness (-distance to the goal, m, + style)"
+
+    def create_run(
+        self,
+        store: RunStore,
+        *,
+        figure: str,
+        file_values: Mapping[str, Any],
+        options: Mapping[str, Any],
+    ) -> int:
+        """Record a new GP run for a task of ``figure`` (no generation yet); return its id.
+
+        Args:
+            store: the run store.
+            figure: the figure's name (``luxo`` or ``humanoid``).
+            file_values: a run file's contents (see `sinews.experiments.run_config`).
+            options: command-line values (None = not given): population,
+                generations, seed, seconds, strategy, task (``hop``, ``limbo``,
+                ``reach``, ``nose``), target (m; ``"x,z"`` for the humanoid),
+                pole_height (m).
+        """
+        check_options(options, DEFAULTS, CONTROLLER)
+        given = {**file_values, **{k: v for k, v in options.items() if v is not None}}
+        task = _task(figure, given)
+        generations = int(given.get("generations") or DEFAULTS["generations"])
+        defaults = {**DEFAULTS, "fitness": list(task.weights),
+                    "phase_in": default_phase_in(generations)}  # fmt: skip
+        config, extra = build_config(
+            file_values=file_values, options=options, defaults=defaults,
+            term_defaults=dict(task.weights), kind_keys=_KIND_KEYS,
+        )  # fmt: skip
+        if config.fitness.names != tuple(task.weights):
+            raise ConfigError(f"GP runs are rated by the task's terms: {', '.join(task.weights)}")
+        settings = GPRunSettings.from_values(
+            {**extra, "task": task.name, "task_options": task.params, "seconds": task.seconds}
+        )
+        GPStrategies(settings).new(config.to_dict(), config.seed)  # validate
+        return store.create_run(
+            f"{CONTROLLER}-{task.figure.name}",
+            config={**config.to_dict(), **settings.to_dict()},
+            seed=config.seed,
+            genome_codec=GENOME_CODEC,
+        )
+
+    def run(
+        self,
+        store: RunStore,
+        run_id: int,
+        *,
+        evaluator: Evaluator,
+        generations: int | None = None,
+        on_generation: Callable[[GenerationSummary], None] | None = None,
+    ) -> None:
+        """Run, resume or extend (to ``generations``) a GP run."""
+        info = store.run(run_id)
+        settings = _settings(info)
+        continue_run(
+            store, run_id, scorer=GPScorer(settings, evaluator),
+            spec=EvolutionConfig.from_dict(info.config).fitness,
+            strategies=GPStrategies(settings), generations=generations,
+            on_generation=on_generation,
+        )  # fmt: skip
+
+    def pick(
+        self,
+        store: RunStore,
+        run_id: int,
+        generation: int,
+        picks: list[int],
+        *,
+        evaluator: Evaluator | None = None,
+    ) -> GenerationSummary:
+        """GP runs take no hand picks: `SinewsError`."""
+        raise SinewsError("GP runs are bred by fitness alone; they take no hand picks")
+
+    def replay(
+        self, store: RunStore, individuals: Sequence[Individual], *, record_hz: float = 30.0
+    ) -> list[Replay]:
+        """Simulate stored programs of one run again (one batch), with the task's scene."""
+        if not individuals:
+            return []
+        run_ids = {ind.run_id for ind in individuals}
+        if len(run_ids) != 1:
+            raise SinewsError("replay individuals of one run at a time")
+        settings = _settings(store.run(run_ids.pop()))
+        programs = settings.parse([ind.genome for ind in individuals])
+        simulation = settings.simulation(record_hz=record_hz)
+        done = measure_programs(settings.task, programs, simulation, record=True)
+        scene = scene_of(settings.task)
+        return [
+            Replay(
+                individual=ind,
+                figure=settings.task.figure,
+                trajectory=done.result.trajectory(k),
+                distance=float(done.result.distance[k]),
+                scene=scene,
+            )
+            for k, ind in enumerate(individuals)
+        ]
+
+    def genome_document(self, store: RunStore, individual: Individual) -> dict[str, Any]:
+        """The program as JSON: its S-expression and what its symbols mean."""
+        settings = _settings(store.run(individual.run_id))
+        task, pset = settings.task, settings.pset
+        return {
+            "kind": CONTROLLER,
+            "schema_version": 1,
+            "codec": GENOME_CODEC,
+            "task": task.name,
+            "task_options": dict(settings.task_options),
+            "joints": list(task.joints),
+            "terminals": list(pset.terminals),
+            "functions": list(pset.functions),
+            "program": individual.genome,
+            "fitness": individual.fitness,
+            "terms": individual.terms,
+        }
+
+    def genome_text(self, individual: Individual) -> str | None:
+        """The program as the paper prints it: ``(list``, one tree per joint, ``)``."""
+        return str(individual.genome)
+
+
+EXPERIMENT: FigureExperiment = GPExperiment()
+"""The GP experiment (registered in `sinews.experiments.figure_runs`)."""
+
+
+def default_phase_in(generations: int) -> dict[str, int]:
+    """Style from a tenth of the run, at full weight in its last generation (the paper's 5:49)."""
+    return {"start": round(0.1 * generations), "full": max(0, generations - 1)}
+
+
+def scene_of(task: Task) -> TaskScene:
+    """The marks a task's picture needs, read from its goal and its touch bodies.
+
+    A goal along the floor (``root_x``) is an X there; a goal at a fixed point
+    is that point; a goal that is a site (the nose) marks the site. The site
+    that must reach it is marked too, and every touch body (a limbo bar)
+    gets a post from the floor.
+    """
+    goal, figure = task.goal, task.figure
+
+    def site(column: str) -> str | None:
+        name = column.partition("_")[2]
+        return name if name in figure.sites else None
+
+    fixed = [t for t in goal.target if not isinstance(t, str)]
+    model = figure.model()
+    posts = tuple(
+        (float(model.body(b).pos[0]), float(model.body(b).pos[2])) for b in figure.touch_bodies
+    )
+    return TaskScene(
+        cross=float(fixed[0]) if goal.tracked == ("root_x",) and fixed else None,
+        posts=posts,
+        target=(float(fixed[0]), float(fixed[1])) if len(fixed) == 2 else None,
+        target_site=site(str(goal.target[0])) if not fixed else None,
+        tracked_site=site(goal.tracked[0]),
+    )
+
+
+def _settings(info: RunInfo) -> GPRunSettings:
+    if not info.kind.startswith(f"{CONTROLLER}-"):
+        raise SinewsError(f"run {info.id} evolves {info.kind}, not GP programs")
+    return GPRunSettings.from_values(info.config)
+
+
+def _task(figure: str, given: Mapping[str, Any]) -> Task:
+    """The task named by ``task``, ``target``, ``pole_height`` and ``seconds`` for ``figure``."""
+    if figure not in TASKS:
+        raise SinewsError(f"GP has no task for the {figure}; figures: {', '.join(TASKS)}")
+    choices = TASKS[figure]
+    short = given.get("task") or next(iter(choices))
+    if short not in choices:
+        raise SinewsError(f"no {figure} task {short!r}; choose from {', '.join(choices)}")
+    name, preset = choices[short]
+    options: dict[str, Any] = dict(preset)
+    if given.get("target") is not None:
+        if "target" in preset:
+            raise SinewsError(f"the {short} task has no --target")
+        options["target"] = _target(given["target"], name)
+    if given.get("pole_height") is not None:
+        if name != "luxo-limbo":
+            raise SinewsError("--pole-height is for the limbo")
+        options["pole_height"] = _number(given["pole_height"], "pole_height")
+    if given.get("seconds") is not None:
+        options["seconds"] = _number(given["seconds"], "seconds")
+    return make_task(name, **options)
+
+
+def _number(value: object, name: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, int | float) or not value > 0:
+        raise SinewsError(f"{name} must be a positive number, got {value!r}")
+    return float(value)
+
+
+def _target(value: object, task: str) -> float | tuple[float, float]:
+    """``1.5`` for the lamp, ``"0.45,1.3"`` or ``[0.45, 1.3]`` for the humanoid's (x, z)."""
+    point = task == "humanoid-reach"
+    items: Any = value.split(",") if isinstance(value, str) else value
+    try:
+        numbers = [float(v) for v in (items if isinstance(items, list | tuple) else [items])]
+    except (TypeError, ValueError):
+        numbers = []
+    if len(numbers) == (2 if point else 1):
+        return (numbers[0], numbers[1]) if point else numbers[0]
+    shape = "X,Z in m" if point else "a distance in m"
+    raise SinewsError(f"--target for {task} must be {shape}, got {value!r}")
