@@ -1,81 +1,94 @@
-"""A short GP run on the lamp: deterministic, replayable, reporting each generation."""
+"""A short stored GP run on the lamp: deterministic, replayable, rated by the phased-in weights."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from pathlib import Path
+
 import numpy as np
 import pytest
+from gp_helpers import stored
 
 pytest.importorskip("mujoco")
 
-from sinews.control.gp import parse_program
-from sinews.evolve import PhaseIn
-from sinews.evolve.gp import GPStrategy, GPVariation
-from sinews.experiments.gp_figures import (
-    GPGeneration,
-    GPRun,
-    GPSettings,
-    Scored,
-    evaluate_programs,
-    primitive_set,
-    run_gp,
-)
-from sinews.figures.tasks import luxo_hop
+from sinews.evolve import SerialEvaluator
+from sinews.experiments.evolution import GenerationSummary
+from sinews.experiments.gp_figures import measure_programs
+from sinews.experiments.gp_runs import EXPERIMENT
+from sinews.experiments.gp_scoring import GPRunSettings
+from sinews.experiments.run_config import EvolutionConfig
+from sinews.store import RunStore
 
-SETTINGS = GPSettings(
-    population=6,
-    generations=3,
-    seconds=1.0,
-    phase_in=PhaseIn(start=1, full=2),
-    variation=GPVariation(tournament_size=2, max_size=40),
-    record_hz=20.0,
-)
+RUN = {"phase_in": {"start": 1, "full": 2},
+       "strategy": {"name": "gp", "tournament_size": 2, "max_size": 40}}  # fmt: skip
+OPTIONS = {"task": "hop", "target": "1.0", "population": 6, "generations": 3, "seconds": 1.0,
+           "seed": 11}  # fmt: skip
 
 
-def _run(seen: list[tuple[GPGeneration, bytes]] | None = None) -> GPRun:
-    def keep(summary: GPGeneration, strategy: GPStrategy, scored: Scored) -> None:
-        assert seen is not None
-        assert len(strategy.population) == len(scored.fitness) == 6
-        seen.append((summary, strategy.to_bytes()))
-
-    return run_gp(
-        luxo_hop(1.0), seed=11, settings=SETTINGS, on_generation=keep if seen is not None else None
-    )
+def evolve(db: Path, on_generation: Callable[[GenerationSummary], None] | None = None) -> int:
+    """A 6-program, 3-generation hop run in ``db``; its id."""
+    with RunStore(db) as store:
+        run = EXPERIMENT.create_run(store, figure="luxo", file_values=RUN, options=OPTIONS)
+        EXPERIMENT.run(store, run, evaluator=SerialEvaluator(), on_generation=on_generation)
+    return run
 
 
-def test_a_short_run_is_deterministic_and_reports_every_generation() -> None:
-    first: list[tuple[GPGeneration, bytes]] = []
-    second: list[tuple[GPGeneration, bytes]] = []
-    a, b = _run(first), _run(second)
-    assert [g.generation for g, _ in first] == [0, 1, 2]
-    for (summary_a, checkpoint_a), (summary_b, checkpoint_b) in zip(first, second, strict=True):
-        assert checkpoint_a == checkpoint_b
-        assert {**summary_a.__dict__, "seconds": 0} == {**summary_b.__dict__, "seconds": 0}
-    assert a.best_text == b.best_text == first[-1][0].best_program
-    assert a.best_terms == b.best_terms
-    np.testing.assert_array_equal(a.trajectory.qpos, b.trajectory.qpos)
-    assert a.trajectory.fps == 20.0 and a.trajectory.qpos is not None
-    assert len(a.trajectory.qpos) == 21  # 1 s at 20 frames/s, both ends
-    assert len(a.history) == 3 and np.isfinite(a.history[-1].best)
+@pytest.fixture(scope="module")
+def db(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    path = tmp_path_factory.mktemp("gp") / "runs.db"
+    evolve(path)
+    return path
 
 
-def test_the_replayed_best_scores_as_it_did_in_its_generation() -> None:
-    seen: list[tuple[GPGeneration, bytes]] = []
-    run = _run(seen)
-    last = seen[-1][0]
-    assert run.best_terms == last.best_terms  # alone or in a batch: the same motion
-    assert run.best_terms["distance"] == pytest.approx(-abs(run.trajectory.qpos[-1, 0] - 1.0))
+def test_a_short_run_is_deterministic_and_reports_every_generation(
+    db: Path, tmp_path: Path
+) -> None:
+    seen: list[GenerationSummary] = []
+    evolve(tmp_path / "again.db", seen.append)
+    assert [s.generation for s in seen] == [0, 1, 2]
+    assert all(s.failed == 0 and s.best is not None and np.isfinite(s.best) for s in seen)
+    status, individuals, checkpoints = stored(db)
+    assert (status, len(individuals), len(checkpoints)) == ("finished", 18, 3)
+    assert stored(tmp_path / "again.db") == (status, individuals, checkpoints)
+    fitness = np.array([i.fitness for i in individuals]).reshape(3, 6)
+    assert fitness.max(axis=1).tolist() == [s.best for s in seen]
 
 
-def test_evaluation_rates_by_the_phased_in_weights() -> None:
-    task = luxo_hop(1.0)
-    pset = primitive_set(task, SETTINGS)
-    still = parse_program("(list 0.0 0.0 0.0)", pset)
-    crouch = parse_program("(list 0.5 (* -1.0 time) gx)", pset)
-    early = evaluate_programs(task, [still, crouch], 0, SETTINGS)
-    late = evaluate_programs(task, [still, crouch], 2, SETTINGS)
-    np.testing.assert_array_equal(early.terms, late.terms)
-    np.testing.assert_array_equal(early.fitness, early.terms[:, 0])  # main goal only
-    full = late.terms @ np.array(list(task.weights.values()))
-    np.testing.assert_allclose(late.fitness, full)
-    assert early.fitness[0] == pytest.approx(-1.0, abs=1e-3)
-    assert not early.failed.any() and (early.nonfinite == 0).all()
+def test_the_replayed_best_scores_as_it_did_in_its_generation(db: Path) -> None:
+    with RunStore(db) as store:
+        best = store.best(1)
+        settings = GPRunSettings.from_values(store.run(1).config)
+        (replay,) = EXPERIMENT.replay(store, [best], record_hz=20.0)
+    alone = measure_programs(settings.task, settings.parse([best.genome]), settings.simulation())
+    assert dict(zip(settings.task.weights, alone.terms[0].tolist(), strict=True)) == best.terms
+    qpos = replay.trajectory.qpos
+    assert qpos is not None and replay.trajectory.fps == 20.0
+    assert len(qpos) == 21  # 1 s at 20 frames/s, both ends
+    assert best.terms is not None
+    assert best.terms["distance"] == pytest.approx(-abs(qpos[-1, 0] - 1.0))
+
+
+def test_generations_are_rated_by_the_phased_in_weights(db: Path) -> None:
+    with RunStore(db) as store:
+        spec = EvolutionConfig.from_dict(store.run(1).config).fitness
+        table = store.scores(1)
+    terms = np.array([[t[name] for name in spec.names] for t in table.terms])
+    first, last = table.generation == 0, table.generation == 2
+    np.testing.assert_array_equal(table.fitness[first], terms[first, 0])  # main goal only
+    full = terms[last] @ np.array([spec.weights[name] for name in spec.names])
+    np.testing.assert_allclose(table.fitness[last], full)
+    assert (table.fitness[last] != terms[last, 0]).all()  # style counts in the end
+    for generation in range(3):
+        rows = table.generation == generation
+        combined = spec.combine(terms[rows], table.failed[rows], generation)
+        np.testing.assert_array_equal(table.fitness[rows], combined)
+
+
+def test_programs_are_measured_by_the_tasks_terms() -> None:
+    settings = GPRunSettings(task_name="luxo-hop", task_options={"target": 1.0}, seconds=1.0)
+    still, crouch = settings.parse(["(list 0.0 0.0 0.0)", "(list 0.5 (* -1.0 time) gx)"])
+    done = measure_programs(settings.task, [still, crouch], settings.simulation())
+    alone = measure_programs(settings.task, [crouch], settings.simulation())
+    np.testing.assert_array_equal(done.terms[1], alone.terms[0])  # the batch does not matter
+    assert done.terms[0, 0] == pytest.approx(-1.0, abs=1e-3)  # standing still, 1 m from the X
+    assert not done.failed.any() and (done.nonfinite == 0).all()

@@ -36,8 +36,10 @@ from sinews.control.gp import (
     ramped_half_and_half,
     reference_population,
 )
+from sinews.evolve import FitnessSpec, PhaseIn
 from sinews.evolve.gp import GPStrategy
-from sinews.experiments.gp_figures import GPSettings, evaluate_programs, primitive_set, wiring
+from sinews.experiments.gp_figures import GPSettings, measure_programs, primitive_set, wiring
+from sinews.experiments.gp_runs import default_phase_in
 from sinews.figures import rollout
 from sinews.figures._mujoco import require_mujoco
 from sinews.figures.tasks import Task, luxo_hop
@@ -93,21 +95,24 @@ def _stepping_alone(task: Task, targets: FloatArray, substeps: int) -> float:
 
 
 def _generation(task: Task, size: int, seconds: float, repeats: int) -> list[Measurement]:
-    serial = GPSettings(population=size, seconds=seconds)
+    serial = GPSettings(seconds=seconds)
     parallel = dataclasses.replace(serial, parallel_interpreter=True)
+    paper = PhaseIn(**default_phase_in(50))  # generation 0 is rated by the main goal alone
+    spec = FitnessSpec(main="distance", weights=task.weights, phase_in=paper)
     first = GPStrategy(
         population_size=size, pset=primitive_set(task, serial), n_trees=len(task.joints),
-        rng=np.random.default_rng(0), variation=serial.variation,
+        rng=np.random.default_rng(0),
     )  # fmt: skip
     programs = first.ask()
     checkpoint = first.to_bytes()
     for settings in (serial, parallel):
-        evaluate_programs(task, programs[:2], 0, settings)  # compile or load the numba cache
+        measure_programs(task, programs[:2], settings)  # compile or load the numba cache
 
     def generation(settings: GPSettings) -> float:
         strategy = GPStrategy.from_bytes(checkpoint)
         start = time.perf_counter()
-        strategy.tell(evaluate_programs(task, programs, 0, settings).fitness)
+        done = measure_programs(task, programs, settings)
+        strategy.tell(spec.combine(done.terms, done.failed, 0))
         strategy.ask()
         return time.perf_counter() - start
 
