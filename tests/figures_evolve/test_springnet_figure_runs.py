@@ -2,17 +2,13 @@
 
 from __future__ import annotations
 
-import os
-import signal
-import sqlite3
-import subprocess
-import sys
-import time
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pytest
+
+from killed_runs import kill_when, stored_generations
 
 pytest.importorskip("mujoco")
 
@@ -83,14 +79,6 @@ def test_a_run_stores_the_papers_generations(tmp_path: Path) -> None:
         assert document["kind"] == "springnet" and len(document["springs"]) == 4
 
 
-def stored_generations(db: Path) -> int:
-    try:
-        with sqlite3.connect(f"file:{db}?mode=ro", uri=True, timeout=5) as conn:
-            return int(conn.execute("SELECT count(*) FROM generations").fetchone()[0])
-    except sqlite3.OperationalError:  # not created yet
-        return 0
-
-
 def test_a_killed_run_resumes_to_the_uninterrupted_one(tmp_path: Path) -> None:
     """SIGKILL mid-run, then resume: the same genomes, fitness, lineage and checkpoints.
 
@@ -101,16 +89,7 @@ def test_a_killed_run_resumes_to_the_uninterrupted_one(tmp_path: Path) -> None:
                 "--executor", "serial"]  # fmt: skip
     whole, cut = tmp_path / "whole.db", tmp_path / "cut.db"
     assert main(["evolve", "snake", *settings, "--db", str(whole)]) == 0
-    code = "import sys; from sinews.cli import main; sys.exit(main(sys.argv[1:]))"
-    args = [sys.executable, "-c", code, "evolve", "snake", *settings, "--db", str(cut)]
-    proc = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    deadline = time.monotonic() + 120
-    while stored_generations(cut) < 3 and proc.poll() is None:
-        assert time.monotonic() < deadline, "the run did not get going"
-        time.sleep(0.002)
-    os.kill(proc.pid, signal.SIGKILL)
-    proc.wait()
-    assert proc.returncode == -signal.SIGKILL, "the run finished before it could be killed"
+    kill_when(["evolve", "snake", *settings, "--db", str(cut)], cut, 3)
     assert 3 <= stored_generations(cut) < 14
     assert main(["runs", "resume", "1", "--db", str(cut)]) == 0
     assert contents(cut) == contents(whole)

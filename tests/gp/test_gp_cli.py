@@ -1,0 +1,181 @@
+"""``sinews evolve luxo|humanoid --controller gp``; ``runs show/best``, ``render`` and ``plot``."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import numpy.typing as npt
+import pytest
+from PIL import Image
+
+pytest.importorskip("mujoco")
+
+from sinews.cli import main
+from sinews.cli.evolve import best_of
+from sinews.control.gp import format_program
+from sinews.experiments.gp_runs import EXPERIMENT
+from sinews.experiments.gp_scoring import GPRunSettings
+from sinews.figures import luxo
+from sinews.figures.tasks import standing_height
+from sinews.render import FigureGeometry, FigurePainter, TaskScene
+from sinews.render.view import View
+from sinews.store import RunStore
+
+TINY = ["--controller", "gp", "--population", "8", "--generations", "2", "--seconds", "0.5",
+        "--seed", "1"]  # fmt: skip
+POST, RED, BLUE = (150, 140, 128), (200, 40, 40), (30, 110, 200)  # the scene's marks
+BACKGROUND = (250, 248, 243)
+PIXELS = (320, 240)
+
+
+def sinews(capsys: pytest.CaptureFixture[str], *args: str) -> tuple[int, str, str]:
+    """Run the CLI; its exit status, stdout and stderr."""
+    status = main(list(args))
+    out, err = capsys.readouterr()
+    return status, out, err
+
+
+def evolve(capsys: pytest.CaptureFixture[str], db: Path, figure: str, *args: str) -> None:
+    """A tiny GP run of ``figure`` (run 1 of ``db``)."""
+    status, out, err = sinews(capsys, "evolve", figure, *TINY, *args, "--db", str(db))
+    assert status == 0, err
+    assert "generation 2/2" in err and "(list" in out
+
+
+Picture = tuple[npt.NDArray[np.uint8], View, dict[str, npt.NDArray[np.float64]], TaskScene]
+
+
+def picture(capsys: pytest.CaptureFixture[str], db: Path, path: Path) -> Picture:
+    """``render 1 --best`` to a PNG; its pixels, camera, last frame's sites, and the scene."""
+    status, _, err = sinews(capsys, "render", "1", "--best", "-o", str(path),
+                            "--size", str(PIXELS[0]), "--db", str(db))  # fmt: skip
+    assert status == 0, err
+    with RunStore(db) as store:
+        (replay,) = EXPERIMENT.replay(store, [best_of(store, 1)])
+    assert replay.scene is not None
+    painter = FigurePainter(FigureGeometry.of(replay.figure), replay.trajectory, size=PIXELS,
+                            scene=replay.scene, still=True)  # fmt: skip
+    sites = dict(zip(replay.figure.sites, painter.poses.sites[-1], strict=True))
+    pixels = np.asarray(Image.open(path).convert("RGB"))
+    assert pixels.shape == (PIXELS[1], PIXELS[0], 3)
+    return pixels, painter.views[-1], sites, replay.scene
+
+
+def shows(
+    pixels: npt.NDArray[np.uint8], view: View, point: npt.ArrayLike, colour: tuple[int, ...],
+    within: int,
+) -> bool:  # fmt: skip
+    """Whether ``colour`` is drawn within ``within`` pixels of the world ``point`` (x, z)."""
+    x, y = (round(float(v)) for v in view.to_px(np.asarray(point, dtype=np.float64)))
+    patch = pixels[y - within : y + within + 1, x - within : x + within + 1]
+    return bool((patch == colour).all(axis=-1).any())
+
+
+def test_a_hop_run_prints_saves_and_draws_its_program(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    db = tmp_path / "runs.db"
+    evolve(capsys, db, "luxo", "--task", "hop", "--target", "1.5")
+    status, out, _ = sinews(capsys, "runs", "show", "1", "--db", str(db))
+    assert status == 0 and '"luxo-hop"' in out
+    program = out[out.index("(list") :].strip()
+    with RunStore(db) as store:
+        settings = GPRunSettings.from_values(store.run(1).config)
+        best = best_of(store, 1)
+    assert settings.task_options == {"target": 1.5} and program == best.genome
+    (parsed,) = settings.parse([program])  # with the run's terminals and functions
+    assert len(parsed) == 3 and format_program(parsed, settings.pset) == program
+    for name in ("p.txt", "p.json"):
+        status, _, err = sinews(capsys, "runs", "best", "1", "-o", str(tmp_path / name),
+                                "--db", str(db))  # fmt: skip
+        assert status == 0, err
+    assert (tmp_path / "p.txt").read_text() == program + "\n"
+    document = json.loads((tmp_path / "p.json").read_text())
+    assert document["program"] == program and document["joints"] == ["base_hinge", "elbow", "neck"]
+    assert document["terminals"] == list(settings.pset.terminals) and "gx" in document["terminals"]
+    pixels, view, _, scene = picture(capsys, db, tmp_path / "hop.png")
+    assert scene.cross == 1.5 and not scene.posts and scene.target is None
+    assert shows(pixels, view, (1.5, 0.0), RED, within=8)  # the X on the floor
+    assert not shows(pixels, view, (0.75, 0.3), RED, within=8)
+    learning, plot = str(tmp_path / "learning.mp4"), str(tmp_path / "fitness.png")
+    status, _, err = sinews(capsys, "render", "1", "--generations", "all", "-o", learning,
+                            "--size", "96", "--db", str(db))  # fmt: skip
+    assert status == 0, err
+    assert Path(learning).stat().st_size > 1000
+    status, _, err = sinews(capsys, "plot", "1", "-o", plot, "--db", str(db))
+    assert status == 0, err
+
+
+def test_a_limbo_run_puts_the_bar_at_four_fifths_of_the_lamp_and_draws_it(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    db = tmp_path / "runs.db"
+    evolve(capsys, db, "luxo", "--task", "limbo")
+    with RunStore(db) as store:
+        info = store.run(1)
+    height = info.config["task_options"]["pole_height"]
+    assert info.kind == "gp-luxo" and info.config["task"] == "luxo-limbo"
+    assert height == round(0.8 * standing_height(luxo()), 4)
+    pixels, view, _, scene = picture(capsys, db, tmp_path / "limbo.png")
+    ((x, top),) = scene.posts
+    assert x == info.config["task_options"]["pole_x"] and top == pytest.approx(height + 0.02)
+    along = [shows(pixels, view, (x, z), POST, within=1) for z in np.linspace(0.1, 0.8, 5) * top]
+    assert sum(along) >= 3  # the post (the lamp may pass in front of a part of it)
+    bar = view.to_px(np.array([x, top]))
+    assert tuple(pixels[round(bar[1]), round(bar[0])]) not in (POST, BACKGROUND)  # the bar
+    assert shows(pixels, view, (scene.cross, 0.0), RED, within=8)
+
+
+@pytest.mark.parametrize(
+    ("task", "args", "target"),
+    [("nose", [], "nose"), ("reach", ["--target", "0.45,1.3"], [0.45, 1.3])],
+)
+def test_humanoid_runs_draw_the_target_and_the_hand(
+    task: str, args: list[str], target: object, tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+) -> None:  # fmt: skip
+    db = tmp_path / "runs.db"
+    evolve(capsys, db, "humanoid", "--task", task, *args)
+    with RunStore(db) as store:
+        info = store.run(1)
+    assert info.kind == "gp-humanoid" and info.config["task_options"] == {"target": target}
+    pixels, view, sites, _ = picture(capsys, db, tmp_path / f"{task}.png")
+    goal = sites["nose"] if target == "nose" else target
+    assert shows(pixels, view, goal, RED, within=4)  # the ring's cross hairs
+    assert shows(pixels, view, sites["hand_r"], BLUE, within=1)  # the hand that reaches
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["luxo", "--task", "hop", "--pole-height", "0.3"], "--pole-height is for the limbo"),
+        (["luxo", "--task", "hop", "--target", "3"], "0.5 to 2 m ahead or behind, got 3.0"),
+        (["luxo", "--target", "abc"], "--target for luxo-hop must be a distance in m"),
+        (["luxo", "--target", "1,2"], "--target for luxo-hop must be a distance in m"),
+        (["luxo", "--task", "dance"], "no luxo task 'dance'; choose from hop, limbo"),
+        (["snake", "--task", "hop"], "GP has no task for the snake"),
+        (["humanoid", "--task", "nose", "--target", "0.4,1.2"], "the nose task has no --target"),
+        (["humanoid", "--task", "reach", "--target", "0.45"], "must be X,Z in m"),
+        (["luxo", "--keep", "KEEP"], "--keep does not apply to gp runs"),
+        (["luxo", "--masses", "3"], "--masses does not apply to gp runs"),
+        (["luxo", "--strategy", "alton"], "breed with the 'gp' strategy, not 'alton'"),
+        (["luxo", "--config", "CONFIG"], "no fitness term called 'grace'"),
+    ],
+)
+def test_bad_input_is_a_one_line_error_and_stores_nothing(
+    args: list[str], message: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    (tmp_path / "keep.txt").write_text("0: 1\n")
+    (tmp_path / "run.toml").write_text("weights = { grace = 1.0 }\n")
+    files = {"KEEP": str(tmp_path / "keep.txt"), "CONFIG": str(tmp_path / "run.toml")}
+    db = tmp_path / "runs.db"
+    RunStore(db).close()
+    args = [files.get(a, a) for a in args]
+    status, _, err = sinews(capsys, "evolve", args[0], "--controller", "gp", *args[1:],
+                            "--db", str(db))  # fmt: skip
+    assert status == 2
+    assert err.startswith("error: ") and message in err and err.count("\n") == 1
+    with RunStore(db) as store:
+        assert store.runs() == []

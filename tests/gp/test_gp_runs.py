@@ -1,0 +1,88 @@
+"""GP runs in the store: one seed, one run on any executor; a run stopped by an error, cut
+short or SIGKILLed resumes to the uninterrupted one bit for bit."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import pytest
+from gp_helpers import stored
+
+from killed_runs import kill_when, stored_generations
+
+pytest.importorskip("mujoco")
+
+from sinews.cli import main
+from sinews.evolve import SerialEvaluator
+from sinews.experiments.evolution import GenerationSummary
+from sinews.experiments.gp_runs import EXPERIMENT
+from sinews.store import RunStore
+
+OPTIONS: dict[str, Any] = {"task": "hop", "target": "1.5", "population": 8, "generations": 8,
+                           "seconds": 0.5, "seed": 3}  # fmt: skip
+
+
+def arguments(**changes: Any) -> list[str]:
+    """``evolve luxo --controller gp`` with `OPTIONS` (and ``changes``) as options."""
+    options = {**OPTIONS, **changes}
+    given = [part for key, value in options.items() for part in (f"--{key}", str(value))]
+    return ["evolve", "luxo", "--controller", "gp", *given]
+
+
+@pytest.fixture(scope="module")
+def whole(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """An uninterrupted run of 8 generations."""
+    db = tmp_path_factory.mktemp("whole") / "runs.db"
+    assert main([*arguments(), "--db", str(db)]) == 0
+    return db
+
+
+def test_the_same_seed_gives_the_same_run_on_any_executor(whole: Path, tmp_path: Path) -> None:
+    """Serial (one batch, every thread) and 2 processes (2 chunks, 1 thread each) agree."""
+    again, pool, other = tmp_path / "again.db", tmp_path / "pool.db", tmp_path / "other.db"
+    assert main([*arguments(), "--db", str(again)]) == 0
+    assert main([*arguments(), "--executor", "processes", "--workers", "2", "--db", str(pool)]) == 0
+    assert main([*arguments(seed=4, generations=1), "--db", str(other)]) == 0
+    status, individuals, checkpoints = stored(whole)
+    assert (status, len(individuals), len(checkpoints)) == ("finished", 64, 8)
+    assert stored(again) == stored(pool) == (status, individuals, checkpoints)
+    assert [i.genome for i in stored(other)[1]] != [i.genome for i in individuals[:8]]
+
+
+class Stop(Exception):
+    """Stands for a crash between two generations."""
+
+
+def stop_after_generation_2(summary: GenerationSummary) -> None:
+    if summary.generation == 2:
+        raise Stop
+
+
+@pytest.mark.parametrize("how", ["error", "fewer generations"])
+def test_a_stopped_run_resumes_to_the_uninterrupted_one(
+    how: str, whole: Path, tmp_path: Path
+) -> None:
+    cut = tmp_path / "cut.db"
+    with RunStore(cut) as store:
+        run = EXPERIMENT.create_run(store, figure="luxo", file_values={}, options=OPTIONS)
+        if how == "error":
+            with pytest.raises(Stop):
+                EXPERIMENT.run(store, run, evaluator=SerialEvaluator(),
+                               on_generation=stop_after_generation_2)  # fmt: skip
+            assert store.run(run).status == "failed"
+        else:
+            EXPERIMENT.run(store, run, evaluator=SerialEvaluator(), generations=3)
+            assert store.run(run).status == "finished"
+        assert store.last_generation(run) == 2
+    more = ["--generations", "8"] if how == "fewer generations" else []
+    assert main(["runs", "resume", str(run), *more, "--db", str(cut)]) == 0
+    assert stored(cut) == stored(whole)
+
+
+def test_a_killed_run_resumes_to_the_uninterrupted_one(whole: Path, tmp_path: Path) -> None:
+    cut = tmp_path / "cut.db"
+    kill_when([*arguments(), "--db", str(cut)], cut, 3)
+    assert 3 <= stored_generations(cut) < 8
+    assert main(["runs", "resume", "1", "--db", str(cut)]) == 0
+    assert stored(cut) == stored(whole)
