@@ -163,6 +163,10 @@ def test_genomes_and_bad_checkpoints() -> None:
     with pytest.raises(StrategyError):
         gp.decode(b"(list nope)")
     state = json.loads(gp.to_bytes())
-    for broken in (b"not json", b"{}", json.dumps({**state, "population": ["(list"]}).encode()):
+    gp.tell(np.zeros(20))
+    told = json.loads(gp.to_bytes())
+    assert "fitness" in told and "picks" not in told  # what it takes, and only that
+    for broken in (b"not json", b"{}", json.dumps({**state, "population": ["(list"]}).encode(),
+                   json.dumps({**told, "fitness": None}).encode()):  # fmt: skip
         with pytest.raises(StrategyError):
             GPStrategy.from_bytes(broken)

@@ -1,8 +1,8 @@
 """`GPStrategy`: genetic programming (seed 003) with the same ask/tell cycle as `Strategy`.
 
 Genomes are programs (`sinews.control.gp.Program`: one tree per driven
-joint), not fixed-size float vectors, so this is its own class rather than a
-`Strategy` subclass; it keeps that base's contract: ``ask()`` returns the next
+joint), not fixed-size float vectors, so this is not a `Strategy` but shares
+its cycle (`sinews.evolve.strategy.AskTell`): ``ask()`` returns the next
 population and records each child's parents, ``tell(fitness)`` (higher is
 better, NaN = worst) lets it breed the following one, calling them out of turn
 raises `StrategyError`, and `to_bytes` is an exact checkpoint (programs as
@@ -20,10 +20,9 @@ copied first (0 in the paper).
 from __future__ import annotations
 
 import dataclasses
-import json
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import Any, Literal, Self
 
 import numpy as np
 import numpy.typing as npt
@@ -42,8 +41,9 @@ from sinews.control.gp import (
     parse_program,
     ramped_half_and_half,
 )
-from sinews.evolve._state import decode_array, decode_rng, encode_array, encode_rng
+from sinews.evolve._state import decode_rng, encode_rng
 from sinews.evolve.errors import StrategyError
+from sinews.evolve.strategy import AskTell
 
 __all__ = ["GPStrategy", "GPVariation", "proportionate", "tournament_select"]
 
@@ -130,7 +130,7 @@ def proportionate(fitness: FloatArray, count: int, *, rng: np.random.Generator) 
     return rng.choice(len(fitness), size=count, p=adjusted / adjusted.sum()).astype(np.int64)
 
 
-class GPStrategy:
+class GPStrategy(AskTell[list[Program]]):
     """Ask for a population of programs, tell it how they did, ask for the next one.
 
     Args:
@@ -159,75 +159,19 @@ class GPStrategy:
         rng: np.random.Generator,
         variation: GPVariation | None = None,
     ) -> None:
-        if population_size < 2 or n_trees < 1:
-            raise StrategyError("need population_size >= 2 and n_trees >= 1")
-        self.population_size = int(population_size)
+        super().__init__(population_size=population_size, rng=rng)
+        if n_trees < 1:
+            raise StrategyError(f"n_trees must be at least 1, got {n_trees}")
         self.pset = pset
         self.n_trees = int(n_trees)
-        self.rng = rng
         self.variation = variation or GPVariation()
         if self.variation.elites >= self.population_size:
             raise StrategyError(f"elites must be below the population size {population_size}")
-        self._generation = -1
-        self._population: list[Program] | None = None
-        self._parents: IntArray | None = None
-        self._fitness: FloatArray | None = None
-        self._told = False
-
-    # -- the cycle ---------------------------------------------------------------
-
-    @property
-    def generation(self) -> int:
-        """Number of the last population asked for (-1 before the first ``ask``)."""
-        return self._generation
 
     @property
     def population(self) -> tuple[Program, ...]:
         """The last population asked for."""
-        if self._population is None:
-            raise StrategyError("no population yet: call ask() first")
-        return tuple(self._population)
-
-    @property
-    def parents(self) -> IntArray:
-        """(P, 2) each child's parents in the previous population, -1 for none (read-only).
-
-        Generation 0 has none; copies, mutants and children replaced by a
-        parent for breaking the limits have one; crossover children have two,
-        the one whose tree they were built on first.
-        """
-        if self._parents is None:
-            raise StrategyError("no population yet: call ask() first")
-        view = self._parents.view()
-        view.flags.writeable = False
-        return view
-
-    @property
-    def awaiting_tell(self) -> bool:
-        """True between an ``ask`` and its ``tell``."""
-        return self._population is not None and not self._told
-
-    def ask(self) -> list[Program]:
-        """The next population of P programs (a new list the caller may keep).
-
-        Raises:
-            StrategyError: the previous population has not been told yet.
-        """
-        if self.awaiting_tell:
-            raise StrategyError("ask() called twice: tell() the last population first")
-        if self._population is None:
-            low, high = self.variation.init_depth
-            population = ramped_half_and_half(
-                self.pset, self.rng, n_programs=self.population_size, n_trees=self.n_trees,
-                min_depth=low, max_depth=high,
-            )  # fmt: skip
-            parents = np.full((self.population_size, 2), -1, dtype=np.int64)
-        else:
-            population, parents = self._breed()
-        self._population, self._parents = population, parents
-        self._generation += 1
-        self._told = False
-        return list(population)
+        return tuple(self._asked())
 
     def tell(self, fitness: npt.ArrayLike) -> None:
         """Judge the last population.
@@ -238,26 +182,14 @@ class GPStrategy:
         Raises:
             StrategyError: out of turn, wrong shape, not numbers, or +inf.
         """
-        if self._population is None:
-            raise StrategyError("tell() before ask(): there is no population to judge")
-        if self._told:
-            raise StrategyError("tell() called twice for one population: ask() first")
-        self._fitness = self._checked(fitness)
-        self._told = True
+        self._record_tell(fitness=fitness)
 
-    def _checked(self, fitness: npt.ArrayLike) -> FloatArray:
-        try:
-            values = np.array(fitness, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise StrategyError("fitness must be numbers") from None
-        if values.shape != (self.population_size,):
-            raise StrategyError(
-                f"tell() needs one fitness per individual ({self.population_size}), "
-                f"got shape {values.shape}"
-            )
-        if np.any(values == np.inf):
-            raise StrategyError("fitness must not be +inf")
-        return np.where(np.isnan(values), -np.inf, values)
+    def _first(self) -> list[Program]:
+        low, high = self.variation.init_depth
+        return ramped_half_and_half(
+            self.pset, self.rng, n_programs=self.population_size, n_trees=self.n_trees,
+            min_depth=low, max_depth=high,
+        )  # fmt: skip
 
     def _select(self, count: int) -> IntArray:
         assert self._fitness is not None
@@ -308,34 +240,24 @@ class GPStrategy:
         except GPError as exc:
             raise StrategyError(f"not a program of this run: {exc}") from None
 
-    def to_state(self) -> dict[str, Any]:
-        """The whole state as a JSON-safe dict (see `from_state`)."""
-        population = self._population
-        state: dict[str, Any] = {
+    def _settings_state(self) -> dict[str, Any]:
+        return {
             "strategy": self.name,
             "population_size": self.population_size,
             "n_trees": self.n_trees,
             "pset": self.pset.to_dict(),
             "options": dataclasses.asdict(self.variation),
             "rng": encode_rng(self.rng),
-            "generation": self._generation,
-            "told": self._told,
-            "population": None
-            if population is None
-            else [format_program(p, self.pset) for p in population],
-            "parents": None if self._parents is None else encode_array(self._parents),
         }
-        if self._told:
-            assert self._fitness is not None
-            state["fitness"] = encode_array(self._fitness)
-        return state
 
-    def to_bytes(self) -> bytes:
-        """The checkpoint: `to_state` as UTF-8 JSON."""
-        return json.dumps(self.to_state(), separators=(",", ":")).encode()
+    def _encode_population(self, population: list[Program]) -> list[str]:
+        return self.genomes(population)
+
+    def _decode_population(self, data: Any) -> list[Program]:
+        return [parse_program(text, self.pset) for text in data]
 
     @classmethod
-    def from_state(cls, state: object) -> GPStrategy:
+    def from_state(cls, state: object) -> Self:
         """Rebuild a strategy exactly as it was saved.
 
         Raises:
@@ -344,35 +266,14 @@ class GPStrategy:
         if not isinstance(state, dict) or state.get("strategy") != cls.name:
             raise StrategyError("not a GP strategy checkpoint")
         try:
-            pset = PrimitiveSet.from_dict(state["pset"])
             strategy = cls(
                 population_size=int(state["population_size"]),
-                pset=pset,
+                pset=PrimitiveSet.from_dict(state["pset"]),
                 n_trees=int(state["n_trees"]),
                 rng=decode_rng(state["rng"]),
                 variation=GPVariation(**state["options"]),
             )
-            strategy._generation = int(state["generation"])
-            if state["population"] is not None:
-                population = [parse_program(text, pset) for text in state["population"]]
-                parents = decode_array(state["parents"], "parents")
-                if len(population) != strategy.population_size or parents.shape != (
-                    len(population),
-                    2,
-                ):
-                    raise StrategyError("checkpoint population does not match the strategy's size")
-                strategy._population, strategy._parents = population, parents
-            if state["told"]:
-                strategy.tell(decode_array(state["fitness"], "fitness"))
+            strategy._restore_cycle(state)
         except (KeyError, TypeError, ValueError, GPError):
             raise StrategyError("malformed GP strategy checkpoint") from None
         return strategy
-
-    @classmethod
-    def from_bytes(cls, data: bytes) -> GPStrategy:
-        """Rebuild a strategy from `to_bytes` output."""
-        try:
-            state = json.loads(data)
-        except (UnicodeDecodeError, json.JSONDecodeError):
-            raise StrategyError("not a strategy checkpoint (not JSON)") from None
-        return cls.from_state(state)

@@ -1,10 +1,11 @@
-"""The `Strategy` base: the ask/tell cycle, its guards, lineage and checkpoints.
+"""The ask/tell cycle every strategy shares (`AskTell`), and the `Strategy` base of float genomes.
 
-A strategy works on a (P, G) float64 population in [0, 1]. ``ask()`` returns
-the next population (the first is uniform random) and records each child's
-parents; ``tell(...)`` gives it what it needs to breed the following one
+``ask()`` returns the next population and records each child's parents;
+``tell(...)`` gives the strategy what it needs to breed the following one
 (fitness, a person's picks, or both — see the subclasses). Calling them out of
-turn raises `StrategyError`.
+turn raises `StrategyError`. `Strategy` works on a (P, G) float64 population
+in [0, 1] (the first is uniform random); `sinews.evolve.gp.GPStrategy` on
+programs.
 
 A checkpoint is the strategy's whole state — parameters, population, what it
 was told, and its generator's ``bit_generator.state`` — as JSON bytes, so a
@@ -13,11 +14,12 @@ restored strategy continues exactly (bit for bit) where the saved one was.
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import json
 from abc import ABC, abstractmethod
-from collections.abc import Mapping
-from typing import Any, ClassVar
+from collections.abc import Mapping, Sized
+from typing import Any, ClassVar, Generic, Self, TypeVar, cast
 
 import numpy as np
 import numpy.typing as npt
@@ -26,56 +28,43 @@ from sinews.evolve._state import decode_array, decode_rng, encode_array, encode_
 from sinews.evolve.errors import StrategyError
 from sinews.evolve.operators import Variation
 
-__all__ = ["Strategy"]
+__all__ = ["AskTell", "Strategy"]
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
 
+Population = TypeVar("Population", bound=Sized)
+
 _REGISTRY: dict[str, type[Strategy]] = {}
 
 
-class Strategy(ABC):
-    """Ask for a population, tell it how it did, ask for the next one.
+class AskTell(ABC, Generic[Population]):
+    """The ask/tell cycle, its guards, lineage and checkpoints, whatever a genome is.
+
+    A subclass makes the first population (`_first`) and breeds the next
+    (`_breed`), writes a population to a checkpoint and reads it back
+    (`_encode_population`, `_decode_population`), and names what its
+    checkpoint holds besides the cycle (`_settings_state`, `from_state`).
 
     Args:
         population_size: P, individuals per generation (at least 2).
-        genome_size: G, floats per genome.
         rng: the strategy's own generator; it makes every random choice.
-        variation: how children are made (mutation and crossover).
 
     Attributes:
         name: the strategy's name in checkpoints and configs.
         takes: the keywords its ``tell`` takes: ``"fitness"``, ``"picks"`` or both.
-        own_options: the subclass's constructor options besides `Variation`'s
-            fields (each also an attribute of the same name).
     """
 
     name: ClassVar[str]
     takes: ClassVar[tuple[str, ...]]
-    own_options: ClassVar[tuple[str, ...]] = ()
 
-    def __init_subclass__(cls, **kwargs: Any) -> None:
-        super().__init_subclass__(**kwargs)
-        _REGISTRY[cls.name] = cls
-
-    def __init__(
-        self,
-        *,
-        population_size: int,
-        genome_size: int,
-        rng: np.random.Generator,
-        variation: Variation | None = None,
-    ) -> None:
+    def __init__(self, *, population_size: int, rng: np.random.Generator) -> None:
         if population_size < 2:
             raise StrategyError(f"population_size must be at least 2, got {population_size}")
-        if genome_size < 1:
-            raise StrategyError(f"genome_size must be at least 1, got {genome_size}")
         self.population_size = int(population_size)
-        self.genome_size = int(genome_size)
         self.rng = rng
-        self.variation = variation or Variation()
         self._generation = -1
-        self._population: FloatArray | None = None
+        self._population: Population | None = None
         self._parents: IntArray | None = None
         self._told = False
         self._fitness: FloatArray | None = None
@@ -88,21 +77,18 @@ class Strategy(ABC):
         """Number of the last population asked for (-1 before the first ``ask``)."""
         return self._generation
 
-    @property
-    def population(self) -> FloatArray:
-        """(P, G) the last population asked for (a read-only view)."""
+    def _asked(self) -> Population:
+        """The last population asked for; `StrategyError` before the first ``ask``."""
         if self._population is None:
             raise StrategyError("no population yet: call ask() first")
-        view = self._population.view()
-        view.flags.writeable = False
-        return view
+        return self._population
 
     @property
     def parents(self) -> IntArray:
-        """(P, 2) each child's parents in the previous population, -1 for none.
+        """(P, 2) each child's parents in the previous population, -1 for none (read-only).
 
-        Generation 0 and fresh random newcomers have no parents; mutated or
-        kept individuals have one (column 0); crossover children have two.
+        Generation 0 and fresh random newcomers have none; kept, copied or
+        mutated individuals have one (column 0); crossover children have two.
         """
         if self._parents is None:
             raise StrategyError("no population yet: call ask() first")
@@ -115,11 +101,8 @@ class Strategy(ABC):
         """True between an ``ask`` and its ``tell``."""
         return self._population is not None and not self._told
 
-    def ask(self) -> FloatArray:
-        """The next population.
-
-        Returns:
-            (P, G) float64 genomes in [0, 1] (a copy the caller may keep).
+    def ask(self) -> Population:
+        """The next population (a copy the caller may keep).
 
         Raises:
             StrategyError: the previous population has not been told yet.
@@ -127,22 +110,18 @@ class Strategy(ABC):
         if self.awaiting_tell:
             raise StrategyError("ask() called twice: tell() the last population first")
         if self._population is None:
-            population = self.rng.random((self.population_size, self.genome_size))
+            population = self._first()
             parents = np.full((self.population_size, 2), -1, dtype=np.int64)
         else:
             population, parents = self._breed()
         self._population, self._parents = population, parents
         self._generation += 1
         self._told = False
-        return population.copy()
+        return copy.copy(population)
 
     @abstractmethod
     def tell(self, *args: Any, **kwargs: Any) -> None:
         """Judge the last population with what the strategy `takes` (fitness and/or picks)."""
-
-    def genomes(self, population: FloatArray) -> FloatArray:
-        """A population as a run store holds it: the (P, G) array itself."""
-        return population
 
     def _record_tell(
         self, *, fitness: npt.ArrayLike | None = None, picks: npt.ArrayLike = ()
@@ -152,6 +131,8 @@ class Strategy(ABC):
             raise StrategyError("tell() before ask(): there is no population to judge")
         if self._told:
             raise StrategyError("tell() called twice for one population: ask() first")
+        if fitness is None and "fitness" in self.takes:
+            raise StrategyError(f"the {self.name} strategy must be told fitness")
         checked = None if fitness is None else self._check_fitness(fitness)
         self._picks = self._check_picks(picks)
         self._fitness = checked
@@ -187,8 +168,129 @@ class Strategy(ABC):
         return chosen
 
     @abstractmethod
-    def _breed(self) -> tuple[FloatArray, IntArray]:
+    def _first(self) -> Population:
+        """Generation 0, made at random."""
+
+    @abstractmethod
+    def _breed(self) -> tuple[Population, IntArray]:
         """The next population and its (P, 2) parents, from the told population."""
+
+    # -- checkpoints -------------------------------------------------------------
+
+    @abstractmethod
+    def _settings_state(self) -> dict[str, Any]:
+        """The checkpoint's first part: name, parameters, the generator's state."""
+
+    @abstractmethod
+    def _encode_population(self, population: Population) -> Any:
+        """A population as JSON-safe data."""
+
+    @abstractmethod
+    def _decode_population(self, data: Any) -> Population:
+        """`_encode_population` data back as a population of this strategy's genomes."""
+
+    def to_state(self) -> dict[str, Any]:
+        """The whole state as a JSON-safe dict (see `from_state`).
+
+        Besides the settings: the generation, the last population and its
+        parents, and, once told, the fitness and (if it `takes` them) the picks.
+        """
+        population = self._population
+        state: dict[str, Any] = {
+            **self._settings_state(),
+            "generation": self._generation,
+            "told": self._told,
+            "population": None if population is None else self._encode_population(population),
+            "parents": None if self._parents is None else encode_array(self._parents),
+        }
+        if self._told:
+            state["fitness"] = None if self._fitness is None else encode_array(self._fitness)
+            if "picks" in self.takes:
+                state["picks"] = self._picks.tolist()
+        return state
+
+    def to_bytes(self) -> bytes:
+        """The checkpoint: `to_state` as UTF-8 JSON."""
+        return json.dumps(self.to_state(), separators=(",", ":")).encode()
+
+    def _restore_cycle(self, state: Mapping[str, Any]) -> None:
+        """Put a fresh strategy where `to_state` left the cycle (KeyError etc. if malformed)."""
+        self._generation = int(state["generation"])
+        if state["population"] is not None:
+            population = self._decode_population(state["population"])
+            parents = decode_array(state["parents"], "parents")
+            if len(population) != self.population_size or parents.shape != (len(population), 2):
+                raise StrategyError("checkpoint population does not match the strategy's size")
+            self._population, self._parents = population, parents
+        if state["told"]:
+            fitness = state["fitness"]
+            self._record_tell(
+                fitness=None if fitness is None else decode_array(fitness, "fitness"),
+                picks=np.array(state["picks"] if "picks" in self.takes else [], dtype=np.int64),
+            )
+
+    @classmethod
+    @abstractmethod
+    def from_state(cls, state: object) -> Self:
+        """Rebuild a strategy exactly as it was saved (`StrategyError` if malformed)."""
+
+    @classmethod
+    def from_bytes(cls, data: bytes) -> Self:
+        """Rebuild a strategy from `to_bytes` output."""
+        try:
+            state = json.loads(data)
+        except (UnicodeDecodeError, json.JSONDecodeError):
+            raise StrategyError("not a strategy checkpoint (not JSON)") from None
+        return cls.from_state(state)
+
+
+class Strategy(AskTell[FloatArray]):
+    """Ask for a (P, G) float64 population in [0, 1], tell it how it did, ask for the next one.
+
+    Args:
+        population_size: P, individuals per generation (at least 2).
+        genome_size: G, floats per genome.
+        rng: the strategy's own generator; it makes every random choice.
+        variation: how children are made (mutation and crossover).
+
+    Attributes:
+        own_options: the subclass's constructor options besides `Variation`'s
+            fields (each also an attribute of the same name).
+    """
+
+    own_options: ClassVar[tuple[str, ...]] = ()
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        _REGISTRY[cls.name] = cls
+
+    def __init__(
+        self,
+        *,
+        population_size: int,
+        genome_size: int,
+        rng: np.random.Generator,
+        variation: Variation | None = None,
+    ) -> None:
+        super().__init__(population_size=population_size, rng=rng)
+        if genome_size < 1:
+            raise StrategyError(f"genome_size must be at least 1, got {genome_size}")
+        self.genome_size = int(genome_size)
+        self.variation = variation or Variation()
+
+    @property
+    def population(self) -> FloatArray:
+        """(P, G) the last population asked for (a read-only view)."""
+        view = self._asked().view()
+        view.flags.writeable = False
+        return view
+
+    def genomes(self, population: FloatArray) -> FloatArray:
+        """A population as a run store holds it: the (P, G) array itself."""
+        return population
+
+    def _first(self) -> FloatArray:
+        return self.rng.random((self.population_size, self.genome_size))
 
     # -- checkpoints -------------------------------------------------------------
 
@@ -241,30 +343,26 @@ class Strategy(ABC):
         except (TypeError, ValueError):
             raise StrategyError(f"bad option value for strategy {name!r}: {options}") from None
 
-    def to_state(self) -> dict[str, Any]:
-        """The whole state as a JSON-safe dict (see `from_state`)."""
-        state: dict[str, Any] = {
+    def _settings_state(self) -> dict[str, Any]:
+        return {
             "strategy": self.name,
             "options": self.options(),
             "population_size": self.population_size,
             "genome_size": self.genome_size,
             "rng": encode_rng(self.rng),
-            "generation": self._generation,
-            "told": self._told,
-            "population": None if self._population is None else encode_array(self._population),
-            "parents": None if self._parents is None else encode_array(self._parents),
         }
-        if self._told:
-            state["fitness"] = None if self._fitness is None else encode_array(self._fitness)
-            state["picks"] = self._picks.tolist()
-        return state
 
-    def to_bytes(self) -> bytes:
-        """The checkpoint: `to_state` as UTF-8 JSON."""
-        return json.dumps(self.to_state(), separators=(",", ":")).encode()
+    def _encode_population(self, population: FloatArray) -> Any:
+        return encode_array(population)
+
+    def _decode_population(self, data: Any) -> FloatArray:
+        population = decode_array(data, "population")
+        if population.ndim != 2 or population.shape[1] != self.genome_size:
+            raise StrategyError("checkpoint population does not match the strategy's sizes")
+        return population
 
     @classmethod
-    def from_state(cls, state: object) -> Strategy:
+    def from_state(cls, state: object) -> Self:
         """Rebuild a strategy (of the class named in ``state``) exactly as it was saved.
 
         Raises:
@@ -283,35 +381,7 @@ class Strategy(ABC):
                 rng=decode_rng(state["rng"]),
                 options=state["options"],
             )
-            strategy._generation = int(state["generation"])
-            strategy._told = bool(state["told"])
-            if state["population"] is not None:
-                strategy._restore_population(
-                    decode_array(state["population"], "population"),
-                    decode_array(state["parents"], "parents"),
-                )
-            if strategy._told:
-                fitness = state["fitness"]
-                strategy._told = False
-                strategy._record_tell(
-                    fitness=None if fitness is None else decode_array(fitness, "fitness"),
-                    picks=np.array(state["picks"], dtype=np.int64),
-                )
+            strategy._restore_cycle(state)
         except (KeyError, TypeError, ValueError):
             raise StrategyError("malformed strategy checkpoint") from None
-        return strategy
-
-    def _restore_population(self, population: FloatArray, parents: IntArray) -> None:
-        size = self.population_size
-        if population.shape != (size, self.genome_size) or parents.shape != (size, 2):
-            raise StrategyError("checkpoint population does not match the strategy's sizes")
-        self._population, self._parents = population, parents
-
-    @classmethod
-    def from_bytes(cls, data: bytes) -> Strategy:
-        """Rebuild a strategy from `to_bytes` output."""
-        try:
-            state = json.loads(data)
-        except (UnicodeDecodeError, json.JSONDecodeError):
-            raise StrategyError("not a strategy checkpoint (not JSON)") from None
-        return cls.from_state(state)
+        return cast(Self, strategy)
