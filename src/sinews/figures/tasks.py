@@ -171,7 +171,7 @@ def standing_height(figure: Figure) -> float:
 
 # -- the built-in tasks --------------------------------------------------------
 
-STYLE = {"early": 0.2, "still": 0.5, "head": 1.0, "fallen": 1.0, "neutral": 0.1, "energy": 0.0}
+STYLE = {"early": 0.2, "still": 0.5, "head": 3.0, "fallen": 2.0, "neutral": 0.1, "energy": 0.0}
 """Full style weights of the built-in tasks (the main goal ``distance`` weighs 1)."""
 
 LUXO_SENSORS = (
@@ -249,7 +249,7 @@ def luxo_limbo(
         goal=Goal(tracked=("root_x",), target=(float(target),), names=("gx",)),
         joints=("base_hinge", "elbow", "neck"),
         sensors=LUXO_SENSORS,
-        weights={"distance": 1.0, **STYLE, "touch": 3.0},
+        weights={"distance": 1.0, **STYLE, "touch": 5.0},
         seconds=seconds,
         params={"pole_height": pole_height, "target": float(target), "pole_x": where},
     )
