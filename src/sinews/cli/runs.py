@@ -26,6 +26,7 @@ from sinews.errors import SinewsError
 from sinews.evolve import make_evaluator
 from sinews.experiments import dancer_evolution
 from sinews.experiments.figure_runs import FigureExperiment, experiment_of
+from sinews.experiments.run_config import EvolutionConfig
 from sinews.store import Individual, RunStore, code_version, export_run, generation_stats
 
 __all__ = ["register"]
@@ -304,14 +305,16 @@ def plot(run: Run, output: Output, db: Db = None) -> None:
         stats = generation_stats(store.scores(run))
         if not len(stats.generations):
             raise SinewsError(f"run {run} has no scored generations yet")
-        terms = stats.best_terms if len(stats.best_terms) > 1 else {}  # one term: = best
+        weights = EvolutionConfig.from_dict(info.config).fitness.weights
+        weighed = {k: v for k, v in stats.best_terms.items() if weights.get(k, 1.0) != 0}
+        terms = weighed if len(weighed) > 1 else {}  # one term: = best; weight 0: not rated
         series = {"best": stats.best, "mean": stats.mean, **terms}
         song = info.config.get("song", "")
         title = f"run {run}: {info.kind}{f' to {song}' if song else ''}"
         title += " (terms of each best)" if terms else ""
         experiment = experiment_of(info)
         if experiment is not None:
-            title += f", seed {info.seed}: {experiment.fitness_label}"
+            title += f", seed {info.seed}\n{experiment.fitness_label}"
         path = plot_fitness(stats.generations, series, output, title)
         store.add_media(run, path, kind=path.suffix.lstrip(".").lower())
     typer.echo(f"wrote {path}")
