@@ -32,6 +32,7 @@ from sinews.figures.mjcf import fmt
 from sinews.figures.terms import TERMS, TaskMeter
 
 __all__ = [
+    "LIMBO_BOARD_TOP",
     "LIMBO_SHARE",
     "TASKS",
     "TERMS",
@@ -205,6 +206,8 @@ def luxo_hop(target: float = 1.0, *, seconds: float = 5.0) -> Task:
 
 LIMBO_SHARE = 0.8
 """The limbo pole's default height: this share of the lamp's standing height."""
+LIMBO_BOARD_TOP = 1.0
+"""Top of the board above the limbo bar, m: the lamp must pass under, not hop over."""
 
 
 def luxo_limbo(
@@ -220,7 +223,9 @@ def luxo_limbo(
     The pole lies across the lamp's path at ``pole_x`` (default: halfway); it
     is solid, and any contact with it costs the ``touch`` term ("a large
     penalty for hitting his head on the limbo pole"). By default its underside
-    is at `LIMBO_SHARE` of the lamp's `standing_height` (0.33 m of 0.41 m).
+    is at `LIMBO_SHARE` of the lamp's `standing_height` (0.33 m of 0.41 m). A
+    thin board closes the gap above the bar up to `LIMBO_BOARD_TOP` (in 2D the
+    lamp could otherwise hop over the bar, as evolved lamps did).
     """
     lamp = luxo()
     if pole_height is None:
@@ -236,6 +241,10 @@ def luxo_limbo(
     shape = {"type": "capsule", "size": fmt(pole_radius), "fromto": fmt(0, -0.3, 0, 0, 0.3, 0)}
     collide = {"contype": "0", "conaffinity": "1", "rgba": "0.8 0.3 0.2 1"}  # with the lamp only
     ET.SubElement(pole, "geom", {"name": "pole", **shape, **collide})
+    board = (LIMBO_BOARD_TOP - height - pole_radius) / 2  # half height of the board above
+    ET.SubElement(pole, "geom", {"name": "board", "type": "box", **collide,
+                                 "size": fmt(pole_radius / 2, 0.3, board),
+                                 "pos": fmt(0, 0, pole_radius + board)})  # fmt: skip
     figure = Figure.from_mjcf(
         ET.tostring(root, encoding="unicode"),
         name="luxo",
