@@ -225,7 +225,7 @@ def luxo_limbo(
     penalty for hitting his head on the limbo pole"). By default its underside
     is at `LIMBO_SHARE` of the lamp's `standing_height` (0.33 m of 0.41 m). A
     thin board closes the gap above the bar up to `LIMBO_BOARD_TOP` (in 2D the
-    lamp could otherwise hop over the bar, as evolved lamps did).
+    lamp could otherwise hop over the bar).
     """
     lamp = luxo()
     if pole_height is None:
