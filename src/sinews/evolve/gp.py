@@ -60,7 +60,8 @@ class GPVariation:
         crossover_rate: share of children made by subtree crossover (paper: 0.9).
         mutation_rate: share made by subtree mutation (paper: 0); the rest are copies.
         selection: ``"tournament"`` or ``"proportionate"`` (Koza's adjusted fitness).
-        tournament_size: contestants per tournament.
+        tournament_size: contestants per tournament (3: with 7 the lamp's
+            hop runs locked onto one lineage within a few generations).
         any_slot: crossover may swap subtrees between different joints' trees.
         elites: best individuals copied unchanged before breeding.
         max_depth: deepest tree allowed in a child (Koza: 17).
@@ -72,7 +73,7 @@ class GPVariation:
     crossover_rate: float = 0.9
     mutation_rate: float = 0.0
     selection: Selection = "tournament"
-    tournament_size: int = 7
+    tournament_size: int = 3
     any_slot: bool = False
     elites: int = 0
     max_depth: int = 17
