@@ -27,11 +27,10 @@ from sinews.evolve import Evaluator, SerialEvaluator, StrategyError, strategy_rn
 from sinews.evolve.gp import GPStrategy, GPVariation
 from sinews.experiments.evolution import Scores
 from sinews.experiments.gp_figures import GPSettings, measure_programs, primitive_set
-from sinews.experiments.score_memory import ScoreMemory, score_in_chunks
+from sinews.experiments.score_memory import ChunkContext, ScoreMemory, score_in_chunks
 from sinews.figures.tasks import Task, make_task
 
 __all__ = [
-    "ChunkContext",
     "GPRunSettings",
     "GPScorer",
     "GPStrategies",
@@ -163,20 +162,7 @@ class GPStrategies:
         return GPStrategy.from_bytes(checkpoint)
 
 
-@dataclass(frozen=True)
-class ChunkContext:
-    """What every chunk of one generation shares (sent to each worker).
-
-    Attributes:
-        settings: the run's settings.
-        nthread: MuJoCo threads per chunk (None: every CPU).
-    """
-
-    settings: GPRunSettings
-    nthread: int | None
-
-
-def score_chunk(context: ChunkContext, texts: Sequence[str]) -> Scores:
+def score_chunk(context: ChunkContext[GPRunSettings], texts: Sequence[str]) -> Scores:
     """The evaluator's work unit: simulate a chunk of stored programs and measure their terms."""
     settings = context.settings
     simulation = settings.simulation(nthread=context.nthread)

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Hashable, Sequence
 from dataclasses import dataclass, field
-from typing import Any, TypeVar
+from typing import Any, Generic, TypeVar
 
 import numpy as np
 import numpy.typing as npt
@@ -20,9 +20,23 @@ import numpy.typing as npt
 from sinews.evolve import Evaluator, chunk_slices
 from sinews.experiments.evolution import Scores
 
-__all__ = ["ScoreMemory", "score_in_chunks"]
+__all__ = ["ChunkContext", "ScoreMemory", "score_in_chunks"]
 
 C = TypeVar("C")
+S = TypeVar("S")
+
+
+@dataclass(frozen=True)
+class ChunkContext(Generic[S]):
+    """What every chunk of one generation shares (sent to each worker).
+
+    Attributes:
+        settings: the run's settings.
+        nthread: MuJoCo threads per chunk (None: every CPU).
+    """
+
+    settings: S
+    nthread: int | None
 
 
 def score_in_chunks(

@@ -28,14 +28,13 @@ from sinews.evolve import Evaluator, FitnessSpec, SerialEvaluator
 from sinews.evolve.alton import SpringNetEncoding
 from sinews.experiments.evolution import Scores
 from sinews.experiments.figure_runs import FIGURES, distance_travelled, make_figure
-from sinews.experiments.score_memory import ScoreMemory, score_in_chunks
+from sinews.experiments.score_memory import ChunkContext, ScoreMemory, score_in_chunks
 from sinews.figures import Figure, RolloutResult, rollout
 
 __all__ = [
     "NET_TIME_STEP",
     "PHYSICS_HZ",
     "TERMS",
-    "ChunkContext",
     "SpringNetScorer",
     "SpringNetSettings",
     "score_chunk",
@@ -171,20 +170,7 @@ def simulate(
     return result, np.stack(ticks)[tick.astype(np.intp)]
 
 
-@dataclass(frozen=True)
-class ChunkContext:
-    """What every chunk of one generation shares (sent to each worker).
-
-    Attributes:
-        settings: the run's settings.
-        nthread: MuJoCo threads per chunk (None: every CPU).
-    """
-
-    settings: SpringNetSettings
-    nthread: int | None
-
-
-def score_chunk(context: ChunkContext, genes: FloatArray) -> Scores:
+def score_chunk(context: ChunkContext[SpringNetSettings], genes: FloatArray) -> Scores:
     """The evaluator's work unit: simulate a chunk of (k, G) nets and measure the distance.
 
     Returns:
