@@ -41,8 +41,9 @@ def test_sigkill_then_resume_gives_the_uninterrupted_run(
     assert 2 <= first < 24
     with RunStore(victim) as store:
         assert store.runs()[0].status == "running"
-    kill_when(["runs", "resume", "1", "--executor", "serial", "--db", str(victim)], victim,
-              first + 3)  # fmt: skip
+    # killed again while process workers run a generation: none may outlive it
+    kill_when(["runs", "resume", "1", "--executor", "processes", "--workers", "2",
+               "--db", str(victim)], victim, first + 3)  # fmt: skip
     assert first + 3 <= stored_generations(victim) < 24
     assert main(["runs", "resume", "1", "--executor", "serial", "--db", str(victim)]) == 0
 

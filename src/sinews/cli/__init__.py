@@ -1,11 +1,13 @@
 """The ``sinews`` command line: thin Typer commands, each calling one library function.
 
 Every command module below defines its commands on a `typer.Typer` and is
-registered here. User errors (`SinewsError`) print as one line and exit 2.
+registered here. Exit statuses: 0 done, 2 a user error (one line on stderr:
+a `SinewsError` or a usage error), 130 interrupted by Ctrl-C.
 """
 
 from __future__ import annotations
 
+import signal
 import sys
 
 import typer
@@ -13,6 +15,9 @@ import typer
 from sinews.errors import SinewsError
 
 __all__ = ["app", "main"]
+
+INTERRUPTED = 130
+USER_ERROR = 2
 
 app = typer.Typer(
     name="sinews",
@@ -41,26 +46,41 @@ def _register() -> None:
     register_studio(app)
 
 
+def _usage_errors() -> tuple[type[Exception], ...]:
+    """Click's usage-error classes: typer's vendored copy and, if installed, click's own."""
+    from typer._click.exceptions import ClickException
+
+    classes: list[type[Exception]] = [ClickException]
+    try:
+        import click
+    except ImportError:
+        return tuple(classes)
+    return (*classes, click.ClickException)
+
+
+def _usage_line(exc: Exception) -> str:
+    """One line for a usage error: the message and where to look for help."""
+    message = " ".join(str(getattr(exc, "format_message", exc.__str__)()).split())
+    ctx = getattr(exc, "ctx", None)
+    command = ctx.command_path if ctx is not None else "sinews"
+    return f"error: {message} (see '{command} --help')"
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run the CLI; return the exit status (0 ok, 2 user error, 130 interrupted)."""
-    _register()
+    signal.signal(signal.SIGINT, signal.default_int_handler)
     try:
-        app(args=argv, standalone_mode=False)
+        _register()
+        status = app(args=argv, standalone_mode=False)
     except SinewsError as exc:
         print(f"error: {exc}", file=sys.stderr)
-        return 2
-    except KeyboardInterrupt:
+        return USER_ERROR
+    except (KeyboardInterrupt, typer.Abort):
         print("interrupted", file=sys.stderr)
-        return 130
+        return INTERRUPTED
     except typer.Exit as exc:
         return int(exc.exit_code or 0)
-    except Exception as exc:  # click usage errors and aborts
-        import click
-
-        if isinstance(exc, click.ClickException):
-            exc.show()
-            return exc.exit_code
-        if isinstance(exc, click.exceptions.Abort):
-            return 1
-        raise
-    return 0
+    except _usage_errors() as exc:
+        print(_usage_line(exc), file=sys.stderr)
+        return USER_ERROR
+    return status if isinstance(status, int) else 0

@@ -16,8 +16,13 @@ so all three give identical results.
 
 from __future__ import annotations
 
+import ctypes
 import math
 import os
+import signal
+import sys
+import threading
+import time
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor
@@ -43,6 +48,7 @@ T = TypeVar("T")
 R = TypeVar("R")
 
 EVALUATORS = ("serial", "processes", "dask")
+_PR_SET_PDEATHSIG = 1
 
 
 def chunk_slices(count: int, n_chunks: int) -> list[slice]:
@@ -50,6 +56,29 @@ def chunk_slices(count: int, n_chunks: int) -> list[slice]:
     n_chunks = max(1, min(n_chunks, count))
     size = math.ceil(count / n_chunks)
     return [slice(start, min(start + size, count)) for start in range(0, count, size)]
+
+
+def _die_with_parent(parent: int) -> None:
+    """Worker initializer: end this worker when the process that started it dies.
+
+    A pool worker blocks on its call queue, so after a SIGKILL of the parent it
+    would live on, reparented to init. On Linux the kernel sends the worker
+    SIGTERM when its parent dies (``PR_SET_PDEATHSIG``); elsewhere, and if the
+    parent is gone already, a daemon thread polling the parent's pid ends it.
+    """
+    if sys.platform.startswith("linux"):
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(_PR_SET_PDEATHSIG, signal.SIGTERM, 0, 0, 0)
+    if os.getppid() != parent:
+        os._exit(1)
+    if not sys.platform.startswith("linux"):
+        threading.Thread(target=_watch_parent, args=(parent,), daemon=True).start()
+
+
+def _watch_parent(parent: int) -> None:
+    while os.getppid() == parent:
+        time.sleep(1.0)
+    os._exit(1)
 
 
 def _in_one_thread(fn: Callable[[C, T], R], context: C, chunk: T) -> R:
@@ -102,6 +131,8 @@ class SerialEvaluator(Evaluator):
 class ProcessEvaluator(Evaluator):
     """A pool of spawned local processes, one single-threaded chunk each at a time.
 
+    Workers end with the process that made the pool, even when it is killed.
+
     Args:
         workers: number of processes (default: the number of CPUs).
     """
@@ -111,7 +142,10 @@ class ProcessEvaluator(Evaluator):
     def __init__(self, *, workers: int | None = None) -> None:
         self.n_workers = workers or os.cpu_count() or 1
         self._pool = ProcessPoolExecutor(
-            max_workers=self.n_workers, mp_context=get_context("spawn")
+            max_workers=self.n_workers,
+            mp_context=get_context("spawn"),
+            initializer=_die_with_parent,
+            initargs=(os.getpid(),),
         )
 
     def map(self, fn: Callable[[C, T], R], context: C, chunks: Sequence[T]) -> list[R]:
