@@ -63,15 +63,15 @@ def test_ctrl_c_mid_run_exits_130_and_leaves_no_process(tmp_path: Path) -> None:
     args = ["evolve", "dancers", "--song", "demo:groove", "--population", "8", "--seconds", "3",
             "--generations", "100000", "--executor", "processes", "--workers", "2",
             "--db", str(db)]  # fmt: skip
-    env_dirs = {"XDG_DATA_HOME": str(tmp_path / "d"), "XDG_CACHE_HOME": str(tmp_path / "c")}
+    env = {**os.environ, "XDG_DATA_HOME": str(tmp_path / "d"), "XDG_CACHE_HOME": str(tmp_path)}
     proc = subprocess.Popen([*sinews_command(), *args], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True, env={**os.environ, **env_dirs})  # fmt: skip
+                            stderr=subprocess.PIPE, text=True, env=env)  # fmt: skip
     while stored_generations(db) < 2 and proc.poll() is None:
         time.sleep(0.01)
     children = descendants(proc.pid)
     assert children, "the process executor started no workers"
     proc.send_signal(signal.SIGINT)
-    out, err = proc.communicate(timeout=120)
+    _, err = proc.communicate(timeout=120)
     assert proc.returncode == 130
     assert "Traceback" not in err
     assert "sinews runs resume 1" in err
