@@ -11,6 +11,7 @@ vanish (balloons, babies, links) which nodes and edges show in each frame.
 from __future__ import annotations
 
 import os
+import zipfile
 from dataclasses import dataclass, fields
 from pathlib import Path
 
@@ -18,6 +19,7 @@ import numpy as np
 import numpy.typing as npt
 
 from sinews.errors import SinewsError
+from sinews.limits import MAX_TRAJECTORY_BYTES
 
 __all__ = ["NODE_SHAPES", "Trajectory", "TrajectoryError"]
 
@@ -184,11 +186,12 @@ class Trajectory:
         """Read a trajectory written by `save`; raise `TrajectoryError` on a bad file."""
         path = Path(path)
         try:
+            _check_declared_sizes(path)
             with np.load(path, allow_pickle=False) as data:
                 contents = {k: data[k] for k in data.files}
         except FileNotFoundError:
             raise TrajectoryError(f"{path}: no such file") from None
-        except (OSError, ValueError, EOFError) as exc:
+        except (OSError, ValueError, EOFError, zipfile.BadZipFile) as exc:
             raise TrajectoryError(f"{path}: not a trajectory file ({exc})") from None
         missing = [k for k in ("positions", "fps", "edges", "node_names") if k not in contents]
         if missing:
@@ -198,7 +201,40 @@ class Trajectory:
             raise TrajectoryError(f"{path}: format version {version} is newer than this sinews")
         known = {f.name for f in fields(cls)}
         kwargs = {k: v for k, v in contents.items() if k in known}
-        kwargs["fps"] = float(contents["fps"])
-        kwargs["node_names"] = tuple(str(n) for n in contents["node_names"])
-        kwargs["failed"] = bool(contents.get("failed", False))
-        return cls(**kwargs)
+        try:
+            kwargs["fps"] = float(contents["fps"])
+            kwargs["failed"] = bool(contents.get("failed", False))
+        except (TypeError, ValueError):
+            raise TrajectoryError(f"{path}: fps and failed must be numbers") from None
+        kwargs["node_names"] = tuple(str(n) for n in np.atleast_1d(contents["node_names"]))
+        if not np.issubdtype(contents["positions"].dtype, np.number) or not np.all(
+            np.isfinite(contents["positions"])
+        ):
+            raise TrajectoryError(f"{path}: positions must be finite numbers (NaN or inf found)")
+        try:
+            return cls(**kwargs)
+        except TrajectoryError as exc:
+            raise TrajectoryError(f"{path}: {exc}") from None
+
+
+def _check_declared_sizes(path: Path) -> None:
+    """Refuse arrays whose headers promise more data than their file holds, or too much.
+
+    `numpy.load` allocates what an array's header declares before reading it,
+    so a forged header of shape (1e9, 17, 2) would take 127 GiB.
+    """
+    total = 0
+    with zipfile.ZipFile(path) as archive:
+        for info in archive.infolist():
+            with archive.open(info) as member:
+                version = np.lib.format.read_magic(member)
+                if version == (1, 0):
+                    shape, _, dtype = np.lib.format.read_array_header_1_0(member)
+                else:
+                    shape, _, dtype = np.lib.format.read_array_header_2_0(member)
+            declared = dtype.itemsize * int(np.prod(shape, dtype=object))
+            if declared > info.file_size:
+                raise ValueError(f"{info.filename} declares more data than it holds")
+            total += declared
+    if total > MAX_TRAJECTORY_BYTES:
+        raise ValueError(f"arrays larger than {MAX_TRAJECTORY_BYTES // 2**30} GiB")

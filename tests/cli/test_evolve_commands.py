@@ -111,7 +111,7 @@ def test_a_run_file_is_read(tmp_path: Path, capsys: pytest.CaptureFixture[str]) 
         (["evolve", "dancers", "--song", SONG, "--fitness", "grace"], "no fitness term"),
         (["evolve", "dancers", "--song", "demo:polka"], "no demo song 'polka'"),
         (["evolve", "dancers", "--song", SONG, "--executor", "gpu"], "no executor called"),
-        (["runs", "show", "9"], "no run 9"),
+        (["runs", "show", "9"], "no such run database"),  # read commands create nothing
         (["render", "1", "-o", "x.png"], "either --individual ID or --best"),
         (["plot", "3", "-o", "x.png"], "no run 3"),
     ],

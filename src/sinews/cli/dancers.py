@@ -7,8 +7,11 @@ from typing import Annotated
 
 import typer
 
+from sinews.cli.songs import Bpm
 from sinews.dancers import DancerGenome
 from sinews.experiments import dancers as experiment
+from sinews.experiments.dancer_evolution import song_path
+from sinews.limits import MAX_PICTURE_PIXELS, MIN_PICTURE_PIXELS
 from sinews.music.analysis import analyse_file
 from sinews.render import contact_sheet, render
 
@@ -31,22 +34,29 @@ def dance(
     genome: Annotated[Path, typer.Argument(help="Dancer genome JSON.")],
     output: Output,
     song: Annotated[
-        Path | None, typer.Option(help="Music to dance to (WAV, FLAC, OGG, MP3, M4A).")
+        str | None,
+        typer.Option(help="Music (WAV, FLAC, OGG, MP3, M4A), or demo:groove / demo:sway."),
     ] = None,
     seconds: Annotated[
         float | None, typer.Option(help="Length of the dance (default: the song, or 8 s).")
     ] = None,
-    bpm: Annotated[float | None, typer.Option(help="Override the detected tempo.")] = None,
+    bpm: Bpm = None,
     seed: Seed = 0,
     trajectory: Annotated[
         Path | None, typer.Option(help="Also save the motion as a .npz trajectory.")
     ] = None,
     debug_overlay: Annotated[bool, typer.Option(help="Draw node labels and force arrows.")] = False,
-    size: Annotated[int, typer.Option(help="Picture size in pixels.")] = 480,
+    size: Annotated[
+        int,
+        typer.Option(
+            min=MIN_PICTURE_PIXELS, max=MAX_PICTURE_PIXELS, help="Picture size in pixels."
+        ),
+    ] = 480,
 ) -> None:
     """Let a dancer dance and draw it (.png, .svg, .gif, or .mp4 with the song as sound)."""
     dancer = DancerGenome.load(genome)
-    music = None if song is None else analyse_file(song, bpm=bpm)
+    song_file = None if song is None else song_path(song)
+    music = None if song_file is None else analyse_file(song_file, bpm=bpm)
     if seconds is None and music is None:
         seconds = 8.0
     (traj,) = experiment.dance(
@@ -55,7 +65,9 @@ def dance(
     if trajectory is not None:
         traj.save(trajectory)
         typer.echo(f"wrote {trajectory}")
-    sound = {"audio": song} if song is not None and output.suffix.lower() == ".mp4" else {}
+    sound = (
+        {"audio": song_file} if song_file is not None and output.suffix.lower() == ".mp4" else {}
+    )
     path = render(traj, output, overlay=debug_overlay, size=size, **sound)
     typer.echo(f"wrote {path}")
 

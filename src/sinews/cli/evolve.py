@@ -67,9 +67,9 @@ Workers = Annotated[
 ]
 
 
-def open_store(db: Path | None) -> RunStore:
-    """The run store at ``db`` or the default location."""
-    return RunStore(db)
+def open_store(db: Path | None, *, readonly: bool = False) -> RunStore:
+    """The run store at ``db`` or the default location (``readonly``: create nothing)."""
+    return RunStore(db, readonly=readonly)
 
 
 def default_executor(info: RunInfo) -> str:

@@ -27,13 +27,24 @@ from sinews.evolve import make_evaluator
 from sinews.experiments import dancer_evolution
 from sinews.experiments.figure_runs import FigureExperiment, experiment_of
 from sinews.experiments.run_config import EvolutionConfig
+from sinews.limits import MAX_GENERATIONS, MAX_PICTURE_PIXELS, MAX_RUN_ID, MIN_PICTURE_PIXELS
 from sinews.store import Individual, RunStore, code_version, export_run, generation_stats
 
 __all__ = ["register"]
 
 runs_app = typer.Typer(help="Inspect, continue and export stored runs.", no_args_is_help=True)
 
-Run = Annotated[int, typer.Argument(help="Run number (see sinews runs list).")]
+Run = Annotated[
+    int, typer.Argument(min=1, max=MAX_RUN_ID, help="Run number (see sinews runs list).")
+]
+Size = Annotated[
+    int,
+    typer.Option(
+        min=MIN_PICTURE_PIXELS,
+        max=MAX_PICTURE_PIXELS,
+        help="Picture width in pixels (figures: 3/4 as high).",
+    ),
+]
 Output = Annotated[Path, typer.Option("-o", "--output", help="File to write.")]
 
 
@@ -44,7 +55,7 @@ def _number(value: float | None) -> str:
 @runs_app.command("list")
 def list_runs(db: Db = None) -> None:
     """List the stored runs."""
-    with open_store(db) as store:
+    with open_store(db, readonly=True) as store:
         table = Table(title=str(store.path))
         for column in (
             "run",
@@ -74,7 +85,7 @@ def list_runs(db: Db = None) -> None:
 @runs_app.command("show")
 def show(run: Run, db: Db = None) -> None:
     """Show a run's settings and its fitness per generation."""
-    with open_store(db) as store:
+    with open_store(db, readonly=True) as store:
         info = store.run(run)
         console = Console()
         console.print(
@@ -91,7 +102,7 @@ def show(run: Run, db: Db = None) -> None:
 def best(run: Run, output: Output, db: Db = None) -> None:
     """Save the run's best individual: JSON (a dancer genome, a figure's controller), or for
     GP runs a .txt of the program's S-expression."""
-    with open_store(db) as store:
+    with open_store(db, readonly=True) as store:
         individual = best_of(store, run)
         experiment = experiment_of(store.run(run))
         seed = ""
@@ -114,11 +125,13 @@ def best(run: Run, output: Output, db: Db = None) -> None:
 
 @runs_app.command("lineage")
 def lineage(
-    individual: Annotated[int, typer.Argument(help="Individual id (see runs show/best).")],
+    individual: Annotated[
+        int, typer.Argument(min=1, max=MAX_RUN_ID, help="Individual id (see runs show/best).")
+    ],
     db: Db = None,
 ) -> None:
     """Show an individual's ancestors back to generation 0."""
-    with open_store(db) as store:
+    with open_store(db, readonly=True) as store:
         table = Table(title=f"lineage of individual {individual}")
         for column in ("id", "generation", "index", "fitness", "parents", "picked"):
             table.add_column(column, justify="right")
@@ -138,7 +151,10 @@ def lineage(
 def resume(
     run: Run,
     generations: Annotated[
-        int | None, typer.Option(help="New total of generations (to extend a run).")
+        int | None,
+        typer.Option(
+            min=1, max=MAX_GENERATIONS, help="New total of generations (to extend a run)."
+        ),
     ] = None,
     executor: Executor = None,
     scheduler: Scheduler = None,
@@ -171,7 +187,7 @@ def export(
     db: Db = None,
 ) -> None:
     """Export a run to JSON/CSV files (and copy its media)."""
-    with open_store(db) as store:
+    with open_store(db, readonly=True) as store:
         files = export_run(store, run, output)
     typer.echo(f"wrote {len(files)} files to {output}")
 
@@ -179,7 +195,9 @@ def export(
 def render(
     run: Run,
     output: Output,
-    individual: Annotated[int | None, typer.Option(help="Individual id to render.")] = None,
+    individual: Annotated[
+        int | None, typer.Option(min=1, max=MAX_RUN_ID, help="Individual id to render.")
+    ] = None,
     best_: Annotated[
         bool, typer.Option("--best", help="Render the run's best individual.")
     ] = False,
@@ -193,9 +211,7 @@ def render(
     debug_overlay: Annotated[
         bool, typer.Option(help="Dancers: draw node labels and force arrows.")
     ] = False,
-    size: Annotated[
-        int, typer.Option(help="Picture width in pixels (figures: 3/4 as high).")
-    ] = 480,
+    size: Size = 480,
     db: Db = None,
 ) -> None:
     """Re-simulate stored individuals and draw them.

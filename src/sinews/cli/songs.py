@@ -15,6 +15,7 @@ from sinews.music import (
     kinematic_beats,
     write_demo,
 )
+from sinews.music.analysis import MAX_BPM, MIN_BPM
 from sinews.trajectory import Trajectory, TrajectoryError
 
 __all__ = ["register"]
@@ -23,7 +24,7 @@ songs_app = typer.Typer(help="Demo songs and song analysis.", no_args_is_help=Tr
 
 Bpm = Annotated[
     float | None,
-    typer.Option(min=20.0, max=400.0, help="The tempo, if known (skips tempo detection)."),
+    typer.Option(min=MIN_BPM, max=MAX_BPM, help="The tempo, if known (skips tempo detection)."),
 ]
 
 

@@ -20,7 +20,9 @@ def studio(
     db: Annotated[
         Path | None, typer.Option("--db", help="Run database (default: the app's data dir).")
     ] = None,
-    port: Annotated[int, typer.Option(help="Port to serve on (0: any free one).")] = 8765,
+    port: Annotated[
+        int, typer.Option(min=0, max=65535, help="Port to serve on (0: any free one).")
+    ] = 8765,
     no_browser: Annotated[
         bool, typer.Option("--no-browser", help="Do not open the page in a browser.")
     ] = False,

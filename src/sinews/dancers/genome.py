@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from sinews import safe_json
 from sinews.dancers.skeleton import EDGE_NAMES, NODES
 from sinews.errors import SinewsError
 
@@ -210,19 +211,13 @@ class DancerGenome:
             reason = getattr(exc, "strerror", None) or "not a text file"
             raise GenomeError(f"{path}: cannot read ({reason})") from None
         try:
-            doc = json.loads(text, parse_constant=_reject_constant)
-        except json.JSONDecodeError as exc:
-            raise GenomeError(f"{path}: not valid JSON (line {exc.lineno}: {exc.msg})") from None
-        except GenomeError as exc:
+            doc = safe_json.loads(text)
+        except SinewsError as exc:
             raise GenomeError(f"{path}: {exc}") from None
         try:
             return cls.from_dict(doc)
         except GenomeError as exc:
             raise GenomeError(f"{path}: {exc}") from None
-
-
-def _reject_constant(name: str) -> float:
-    raise GenomeError(f"{name} is not allowed in a genome")
 
 
 def _mapping(value: object, where: str) -> dict[str, Any]:

@@ -10,6 +10,7 @@ import numpy as np
 from sinews.dancers import DANCER_ENGINE, DancerGenome, develop
 from sinews.dancers.responders import delayed
 from sinews.errors import SinewsError
+from sinews.limits import MAX_SECONDS
 from sinews.music import MusicFeatures
 from sinews.music.spectrum import DEFAULT_BANDS
 from sinews.springmass import BodyBatch, Recording, SimState, simulate
@@ -17,7 +18,6 @@ from sinews.trajectory import Trajectory
 
 __all__ = ["MAX_SECONDS", "dance", "new_genome", "random_genomes"]
 
-MAX_SECONDS = 20 * 60.0
 """Longest dance we simulate (the length of the longest song we accept)."""
 
 

@@ -215,4 +215,6 @@ def read_keep_file(path: str | os.PathLike[str]) -> dict[int, list[int]]:
         text = Path(path).read_text(encoding="utf-8")
     except OSError as exc:
         raise SinewsError(f"{path}: cannot read ({exc.strerror or exc})") from None
+    except UnicodeDecodeError:
+        raise SinewsError(f"{path}: not a UTF-8 text file") from None
     return parse_keep(text, where=str(path))

@@ -28,6 +28,7 @@ from typing import Any
 
 from sinews.errors import SinewsError
 from sinews.evolve import FitnessError, FitnessSpec, PhaseIn, parse_weights
+from sinews.limits import MAX_GENERATIONS, MAX_POPULATION
 
 __all__ = ["ConfigError", "EvolutionConfig", "build_config", "fitness_spec", "load_toml"]
 
@@ -59,10 +60,14 @@ class EvolutionConfig:
     strategy_options: Mapping[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
-        if self.population < 2:
-            raise ConfigError(f"population must be at least 2, got {self.population}")
-        if self.generations < 1:
-            raise ConfigError(f"generations must be at least 1, got {self.generations}")
+        if not 2 <= self.population <= MAX_POPULATION:
+            raise ConfigError(
+                f"population must be from 2 to {MAX_POPULATION}, got {self.population}"
+            )
+        if not 1 <= self.generations <= MAX_GENERATIONS:
+            raise ConfigError(
+                f"generations must be from 1 to {MAX_GENERATIONS}, got {self.generations}"
+            )
         if self.seed < 0:
             raise ConfigError(f"seed must be >= 0, got {self.seed}")
 
@@ -100,6 +105,8 @@ def load_toml(path: str | os.PathLike[str]) -> dict[str, Any]:
             return tomllib.load(fh)
     except OSError as exc:
         raise ConfigError(f"{path}: cannot read ({exc.strerror or exc})") from None
+    except UnicodeDecodeError:
+        raise ConfigError(f"{path}: not a UTF-8 text file") from None
     except tomllib.TOMLDecodeError as exc:
         raise ConfigError(f"{path}: not valid TOML ({exc})") from None
 

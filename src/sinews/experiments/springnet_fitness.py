@@ -30,6 +30,7 @@ from sinews.experiments.evolution import Scores
 from sinews.experiments.figure_runs import FIGURES, distance_travelled, make_figure
 from sinews.experiments.score_memory import ChunkContext, ScoreMemory, score_in_chunks
 from sinews.figures import Figure, RolloutResult, rollout
+from sinews.limits import MAX_MASSES, check_whole
 
 __all__ = [
     "NET_TIME_STEP",
@@ -84,7 +85,7 @@ class SpringNetSettings:
         settings = cls(
             figure=figure,
             seconds=_number(values.get("seconds"), "seconds"),
-            masses=_whole(masses, "masses", 2),
+            masses=check_whole("masses", masses, 2, MAX_MASSES),
             physics_hz=_whole(values.get("physics_hz") or PHYSICS_HZ[figure], "physics_hz", 1),
             control_hz=_whole(values.get("control_hz"), "control_hz", 1),
         )

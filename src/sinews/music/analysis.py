@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
+from sinews.limits import check_number
 from sinews.music.beats import beat_phase, estimate_tempo, onset_envelope, track_beats
 from sinews.music.decode import Audio, check_readable_file, load_audio
 from sinews.music.errors import AudioError
@@ -35,7 +36,11 @@ from sinews.music.spectrum import (
     window_length,
 )
 
-__all__ = ["analyse", "analyse_file", "default_cache_dir"]
+__all__ = ["MAX_BPM", "MIN_BPM", "analyse", "analyse_file", "default_cache_dir"]
+
+MIN_BPM = 20.0
+MAX_BPM = 400.0
+"""The tempi a person may set in place of the analysed one."""
 
 LEVEL_FLOOR_DB = -80.0
 """Levels never go below this many dB under the song's loudness reference."""
@@ -164,7 +169,10 @@ def analyse_file(
 
     Raises:
         AudioError: the file cannot be decoded (see `load_audio`).
+        SinewsError: ``bpm`` outside [`MIN_BPM`, `MAX_BPM`] or not a number.
     """
+    if bpm is not None:
+        check_number("bpm", bpm, MIN_BPM, MAX_BPM)
     path = Path(path)
     check_readable_file(path)
     song_hash = _file_sha256(path)

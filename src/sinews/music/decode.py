@@ -98,6 +98,9 @@ def load_audio(path: str | os.PathLike[str]) -> Audio:
     audio = Audio(samples=samples, sample_rate=rate)
     if not np.all(np.isfinite(audio.samples)):
         raise AudioError(f"{path}: corrupt audio (it contains NaN or infinite samples)")
+    peak = float(np.max(np.abs(audio.samples), initial=0.0))
+    if peak > 1.0:  # float files may exceed full scale, by any amount: bring them back
+        audio = Audio(samples=audio.samples / np.float32(peak), sample_rate=audio.sample_rate)
     if audio.duration < MIN_SECONDS:
         raise AudioError(
             f"{path}: too short ({audio.duration:.2f} s); a song needs at least {MIN_SECONDS} s"

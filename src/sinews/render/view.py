@@ -8,6 +8,7 @@ from typing import Literal
 import numpy as np
 import numpy.typing as npt
 
+from sinews.limits import MAX_PICTURE_PIXELS
 from sinews.render.errors import RenderError
 
 __all__ = ["DEFAULT_BOX", "Box", "View", "world_bounds"]
@@ -81,8 +82,11 @@ class View:
                 bottom on the lower margin (dancers of one sheet share a floor).
         """
         width, height = int(size[0]), int(size[1])
-        if width < 1 or height < 1:
-            raise RenderError(f"image size must be positive, got {width}x{height}")
+        if not (0 < width <= MAX_PICTURE_PIXELS and 0 < height <= MAX_PICTURE_PIXELS):
+            raise RenderError(
+                f"image size must be from 1 to {MAX_PICTURE_PIXELS} pixels a side, "
+                f"got {width}x{height}"
+            )
         x0, y0, x1, y1 = DEFAULT_BOX if box is None else box
         if not all(np.isfinite(v) for v in (x0, y0, x1, y1)) or x1 < x0 or y1 < y0:
             raise RenderError(f"bad world box {box}")

@@ -15,7 +15,7 @@ from typing import ClassVar
 import numpy as np
 import numpy.typing as npt
 
-from sinews.errors import SinewsError
+from sinews.limits import MAX_SECONDS, check_number
 from sinews.scenes.grab import Grab, Pull
 from sinews.scenes.messages import NO_INPUT, SceneEvent, SceneFrame, SceneInput, SceneRun, Script
 from sinews.scenes.world import World
@@ -104,8 +104,7 @@ class Scene(ABC):
             script: input for each step given the latest frame; None plays
                 without input (the scene plays itself).
         """
-        if not (np.isfinite(seconds) and seconds >= 0):
-            raise SinewsError(f"seconds must be a number >= 0, got {seconds}")
+        check_number("seconds", seconds, 0.0, MAX_SECONDS)
         n_steps = round(seconds / self.world.frame_dt)
         frames = [self.frame()]
         events: list[tuple[int, SceneEvent]] = []

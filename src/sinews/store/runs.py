@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from sinews.limits import MAX_RUN_ID
 from sinews.store.codec import CODECS, decode_genome, encode_genome
 from sinews.store.environment import code_version, default_db_path
 from sinews.store.errors import StoreError
@@ -59,14 +60,17 @@ class RunStore:
 
     Args:
         path: the SQLite file (created if missing); default `default_db_path`.
+        readonly: open only to read (nothing created or written; see `connect`).
 
     Raises:
         StoreError: a corrupt, foreign or newer database (see `sinews.store.schema`).
     """
 
-    def __init__(self, path: str | os.PathLike[str] | None = None) -> None:
+    def __init__(
+        self, path: str | os.PathLike[str] | None = None, *, readonly: bool = False
+    ) -> None:
         self.path = Path(path) if path is not None else default_db_path()
-        self._conn = connect(self.path)
+        self._conn = connect(self.path, readonly=readonly)
 
     @property
     def root(self) -> Path:
@@ -109,6 +113,9 @@ class RunStore:
             raise StoreError(f"{self.path}: database error ({exc})") from None
 
     def _query(self, sql: str, args: Sequence[Any] = ()) -> list[tuple[Any, ...]]:
+        """Rows of a read; an id beyond SQLite's integers matches nothing."""
+        if any(isinstance(a, int) and not -MAX_RUN_ID - 1 <= a <= MAX_RUN_ID for a in args):
+            return []
         with self._errors():
             return self._conn.execute(sql, args).fetchall()
 

@@ -88,14 +88,22 @@ MIGRATIONS: tuple[str, ...] = (
 SCHEMA_VERSION = len(MIGRATIONS)
 
 
-def connect(path: Path) -> sqlite3.Connection:
-    """Open (creating if needed) the sinews database at ``path``, migrated to `SCHEMA_VERSION`.
+def connect(path: Path, *, readonly: bool = False) -> sqlite3.Connection:
+    """Open the sinews database at ``path``, migrated to `SCHEMA_VERSION`.
+
+    Args:
+        path: the database file; created (with its folder) unless ``readonly``.
+        readonly: only read: nothing is created or written, and a database on
+            a read-only file system opens too.
 
     Raises:
-        StoreError: the file is not SQLite, belongs to another application,
-            was written by a newer sinews, or cannot be opened.
+        StoreError: the file is missing (``readonly``), is not SQLite, belongs
+            to another application, was written by a newer (or, read-only, an
+            older) sinews, or cannot be opened.
     """
     _check_header(path)
+    if readonly:
+        return _connect_readonly(path)
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         conn = sqlite3.connect(path, isolation_level=None, timeout=30.0)
@@ -112,6 +120,38 @@ def connect(path: Path) -> sqlite3.Connection:
     except StoreError:
         conn.close()
         raise
+    return conn
+
+
+def _connect_readonly(path: Path) -> sqlite3.Connection:
+    """A read-only connection; ``immutable`` where WAL's shared memory cannot be made."""
+    if not path.is_file():
+        raise StoreError(f"{path}: no such run database")
+    uri = path.resolve().as_uri()
+    conn: sqlite3.Connection | None = None
+    for mode in ("?mode=ro", "?mode=ro&immutable=1"):
+        try:
+            conn = sqlite3.connect(uri + mode, uri=True, isolation_level=None, timeout=30.0)
+            conn.execute("SELECT count(*) FROM sqlite_master").fetchone()
+            break
+        except sqlite3.OperationalError:
+            if conn is not None:
+                conn.close()
+            conn = None
+        except sqlite3.DatabaseError as exc:
+            raise StoreError(f"{path}: not a usable sinews database ({exc})") from None
+    if conn is None:
+        raise StoreError(f"{path}: cannot open the database to read it")
+    app_id = conn.execute("PRAGMA application_id").fetchone()[0]
+    version = conn.execute("PRAGMA user_version").fetchone()[0]
+    if app_id != APPLICATION_ID or version != SCHEMA_VERSION:
+        conn.close()
+        if app_id != APPLICATION_ID:
+            raise StoreError(f"{path}: not a sinews database; refusing to touch it")
+        raise StoreError(
+            f"{path}: schema {version}, this sinews reads {SCHEMA_VERSION}; "
+            "a command that writes (e.g. sinews runs resume) upgrades it"
+        )
     return conn
 
 

@@ -39,6 +39,7 @@ from sinews.experiments.dancer_evolution import (
 from sinews.experiments.evolution import FloatStrategies, advance, new_strategy, record_picks
 from sinews.experiments.run_config import EvolutionConfig
 from sinews.music import MusicFeatures, analyse_file
+from sinews.music.analysis import MAX_BPM, MIN_BPM
 from sinews.store import GenerationRecord, Individual, RunInfo, RunStore
 from sinews.studio.songs import Song, SongLibrary
 
@@ -219,8 +220,8 @@ class StudioRuns:
 
     def set_bpm(self, run_id: int, bpm: float | None) -> None:
         """Correct (or, with None, un-correct) the tempo a run's song is analysed with."""
-        if bpm is not None and not 20.0 <= bpm <= 400.0:
-            raise StudioError(f"bpm must be in [20, 400], got {bpm:g}")
+        if bpm is not None and not MIN_BPM <= bpm <= MAX_BPM:
+            raise StudioError(f"bpm must be in [{MIN_BPM:g}, {MAX_BPM:g}], got {bpm:g}")
         info = self.info(run_id)
         self.store.update_config(run_id, {**info.config, "bpm": bpm})
 
