@@ -158,3 +158,11 @@ def test_songs_a_user_may_give_dance_to(files: Path, song: str) -> None:
     sf.write(files / "huge.wav", (1e20 * tone).astype(np.float32), rate, subtype="FLOAT")
     result = run(files, "dance", "g.json", "-o", "s.png", "--song", song, "--seconds", "1")
     assert result.returncode == 0, result.stderr
+
+
+def test_score_counts_the_beats_of_the_motion_not_of_the_song(files: Path) -> None:
+    result = run(files, "score", "t.npz", "--song", "demo:groove")
+    assert result.returncode == 0, result.stderr
+    heard = int(result.stdout.split("(")[1].split()[0])
+    assert 1 <= heard <= 4  # a 1 s motion; the demo song has dozens of beats
+    assert "in the 1.0 s motion" in result.stdout

@@ -7,6 +7,7 @@ from typing import Annotated
 
 import typer
 
+from sinews.cli.progress import frame_progress
 from sinews.cli.songs import Bpm
 from sinews.dancers import DancerGenome
 from sinews.experiments import dancers as experiment
@@ -68,7 +69,8 @@ def dance(
     sound = (
         {"audio": song_file} if song_file is not None and output.suffix.lower() == ".mp4" else {}
     )
-    path = render(traj, output, overlay=debug_overlay, size=size, **sound)
+    with frame_progress("dance"):
+        path = render(traj, output, overlay=debug_overlay, size=size, **sound)
     typer.echo(f"wrote {path}")
 
 

@@ -21,6 +21,7 @@ from sinews.cli.evolve import (
     print_summary,
     run_with_progress,
 )
+from sinews.cli.progress import frame_progress
 from sinews.dancers import DancerGenome
 from sinews.errors import SinewsError
 from sinews.evolve import make_evaluator
@@ -228,7 +229,8 @@ def render(
         if experiment is not None:
             if debug_overlay:
                 raise SinewsError("--debug-overlay is for dancer runs")
-            _render_figures(store, run, experiment, output, individual, generations, size)
+            with frame_progress(f"run {run}"):
+                _render_figures(store, run, experiment, output, individual, generations, size)
             return
         if generations is not None:
             raise SinewsError("--generations is for figure runs")
@@ -237,7 +239,8 @@ def render(
             store, chosen, record_forces=debug_overlay
         )
         sound = {"audio": song} if output.suffix.lower() == ".mp4" else {}
-        path = draw(traj, output, overlay=debug_overlay, size=size, **sound)
+        with frame_progress(f"run {run}"):
+            path = draw(traj, output, overlay=debug_overlay, size=size, **sound)
         store.add_media(run, path, kind=path.suffix.lstrip(".").lower(), individual_id=chosen.id)
     typer.echo(f"wrote {path} (individual {chosen.id}, fitness {_number(chosen.fitness)})")
 

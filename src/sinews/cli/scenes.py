@@ -9,6 +9,7 @@ from typing import Annotated
 import numpy as np
 import typer
 
+from sinews.cli.progress import frame_progress
 from sinews.scenes.catalog import SCENE_NAMES, make_scene, player
 from sinews.scenes.video import save_scene
 
@@ -44,7 +45,8 @@ def scene(
     per_frame = (time.perf_counter() - started) / max(1, run.trajectory.n_frames - 1)
     if trajectory is not None:
         typer.echo(f"wrote {run.trajectory.save(trajectory)}")
-    path = save_scene(run, output, height=height, overlay=debug_overlay)
+    with frame_progress(name):
+        path = save_scene(run, output, height=height, overlay=debug_overlay)
     typer.echo(
         f"wrote {path}: {run.score_name} {run.score[-1]}, "
         f"{1e3 * per_frame:.2f} ms per frame (simulation and scene logic)"

@@ -5,8 +5,10 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Annotated
 
+import numpy as np
 import typer
 
+from sinews.experiments.dancer_evolution import song_path
 from sinews.music import (
     DEFAULT_DEMO,
     DEMO_NAMES,
@@ -59,19 +61,27 @@ def analyse(
 def score(
     trajectory: Annotated[Path, typer.Argument(help="Trajectory file (.npz).")],
     song: Annotated[
-        Path | None,
-        typer.Option(help="Song to take the beats from (default: the beats saved in the file)."),
+        str | None,
+        typer.Option(
+            help="Song to take the beats from, or demo:groove / demo:sway "
+            "(default: the beats saved in the file)."
+        ),
     ] = None,
     bpm: Bpm = None,
 ) -> None:
     """Print the beat-align score of a motion: how well its pauses fall on the beats (0–1)."""
     traj = Trajectory.load(trajectory)
-    beats = traj.beats if song is None else analyse_file(song, bpm=bpm).beats
+    beats = traj.beats if song is None else analyse_file(song_path(song), bpm=bpm).beats
     if beats is None:
         raise TrajectoryError(f"{trajectory}: no beats saved in the file; pass --song SONG")
     value = beat_align_score(traj.positions, traj.fps, beats)
+    duration = (len(traj.positions) - 1) / traj.fps
+    heard = np.count_nonzero((np.asarray(beats) >= 0) & (np.asarray(beats) <= duration))
     pauses = len(kinematic_beats(traj.positions, traj.fps))
-    typer.echo(f"beat-align score {value:.3f} ({len(beats)} music beats, {pauses} kinematic beats)")
+    typer.echo(
+        f"beat-align score {value:.3f} ({heard} music beats and {pauses} kinematic beats "
+        f"in the {duration:.1f} s motion)"
+    )
 
 
 def register(app: typer.Typer) -> None:

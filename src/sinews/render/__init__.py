@@ -12,6 +12,7 @@ Example:
 
 from __future__ import annotations
 
+from sinews.render._output import atomic_output
 from sinews.render.canvas import Canvas, Color, Point
 from sinews.render.errors import RenderError
 from sinews.render.figure import (
@@ -22,6 +23,7 @@ from sinews.render.figure import (
     render_figure,
     render_figure_sequence,
 )
+from sinews.render.frames import paint_frames, reporting_progress
 from sinews.render.media import (
     iter_frames,
     make_painter,
@@ -55,13 +57,16 @@ __all__ = [
     "SvgCanvas",
     "TaskScene",
     "View",
+    "atomic_output",
     "contact_sheet",
     "iter_frames",
     "make_painter",
+    "paint_frames",
     "plot_fitness",
     "render",
     "render_figure",
     "render_figure_sequence",
+    "reporting_progress",
     "save_gif",
     "save_mp4",
     "save_png",

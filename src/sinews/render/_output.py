@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import secrets
 from collections.abc import Iterator
 from contextlib import contextmanager, suppress
 from pathlib import Path
@@ -36,7 +37,8 @@ def atomic_output(path: str | os.PathLike[str]) -> Iterator[Path]:
         raise RenderError(f"cannot write {path}: {parent} is not a directory")
     if not os.access(parent, os.W_OK):
         raise RenderError(f"cannot write {path}: {parent} is not writable")
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.part")
+    # unique per call: two threads writing the same file must not share a temporary
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.{secrets.token_hex(6)}.part")
     try:
         yield tmp
         os.replace(tmp, path)

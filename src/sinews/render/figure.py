@@ -41,6 +41,7 @@ from sinews.render.figure_geometry import (
 )
 from sinews.render.figure_panel import NetPanel, draw_panel
 from sinews.render.figure_scene import TaskScene, draw_scene_back, draw_scene_front
+from sinews.render.frames import paint_frames
 from sinews.render.raster import RasterCanvas
 from sinews.render.style import Style, default_colors
 from sinews.render.svg import SvgCanvas
@@ -293,10 +294,7 @@ def _color(rgb: FloatArray) -> Color:
 
 
 def _frames(painter: FigurePainter, step: int) -> Iterator[npt.NDArray[np.uint8]]:
-    canvas = RasterCanvas(painter.width, painter.height)
-    for frame in range(0, painter.n_frames, step):
-        painter.draw(canvas, frame)
-        yield canvas.to_array()
+    return paint_frames(painter.draw, (painter.width, painter.height), painter.n_frames, step=step)
 
 
 def _step(traj: Trajectory, fps: float | None) -> int:

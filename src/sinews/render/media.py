@@ -16,6 +16,7 @@ from PIL import Image
 from sinews.render._output import atomic_output, suffix_of
 from sinews.render.errors import RenderError
 from sinews.render.ffmpeg import encode_mp4
+from sinews.render.frames import paint_frames
 from sinews.render.painter import FramePainter, fit_positions, frame_index, node_radii
 from sinews.render.raster import RasterCanvas
 from sinews.render.style import Overlay, Style
@@ -93,10 +94,8 @@ def iter_frames(painter: FramePainter, *, step: int = 1) -> Iterator[npt.NDArray
 
     One canvas is reused, so frames cost only drawing and downsampling.
     """
-    canvas = RasterCanvas(painter.view.width, painter.view.height)
-    for frame in range(0, painter.traj.n_frames, step):
-        painter.draw(canvas, frame)
-        yield canvas.to_array()
+    size = (painter.view.width, painter.view.height)
+    return paint_frames(painter.draw, size, painter.traj.n_frames, step=step)
 
 
 def _frames(traj: Trajectory, frame: int | Sequence[int] | None) -> list[int]:

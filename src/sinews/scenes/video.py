@@ -16,7 +16,16 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
-from sinews.render import FramePainter, Overlay, RasterCanvas, Style, View, render
+from sinews.render import (
+    Canvas,
+    FramePainter,
+    Overlay,
+    Style,
+    View,
+    atomic_output,
+    paint_frames,
+    render,
+)
 from sinews.render.ffmpeg import encode_mp4
 from sinews.scenes.messages import SceneRun
 from sinews.trajectory import Trajectory
@@ -74,23 +83,20 @@ def save_scene(
         return render(traj, path, size=size, box=box, style=style, overlay=chosen is not None)
     painter = FramePainter(traj, View.fit(box, size, margin=0.0), style=style, overlay=chosen)
     step = max(1, round(traj.fps / fps))
-    tmp = path.with_name(path.name + ".part")
-    try:
+    with atomic_output(path) as tmp:
         encode_mp4(_frames(painter, run, step), tmp, size=size, fps=traj.fps / step)
-        os.replace(tmp, path)
-    finally:
-        tmp.unlink(missing_ok=True)
     return path
 
 
 def _frames(painter: FramePainter, run: SceneRun, step: int) -> Iterator[npt.NDArray[np.uint8]]:
     """Every ``step``-th frame, drawn with the score in the top-left corner."""
-    canvas = RasterCanvas(painter.view.width, painter.view.height)
     style = painter.style
-    pad = 0.03 * painter.view.height
-    for frame in range(0, painter.traj.n_frames, step):
+    pad, text_size = 0.03 * painter.view.height, 0.05 * painter.view.height
+
+    def draw(canvas: Canvas, frame: int) -> None:
         painter.draw(canvas, frame)
         text = f"{run.score_name}: {run.score[frame]}"
-        size = 0.05 * painter.view.height
-        canvas.text((pad, pad), text, style.text_color, size=size, halo=style.background)
-        yield canvas.to_array()
+        canvas.text((pad, pad), text, style.text_color, size=text_size, halo=style.background)
+
+    size = (painter.view.width, painter.view.height)
+    return paint_frames(draw, size, painter.traj.n_frames, step=step)
