@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 from collections.abc import Iterator
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import numpy as np
@@ -57,6 +58,44 @@ def test_requests_must_come_from_this_machine_and_this_page(client: TestClient) 
     evil = {"Origin": "http://evil.example"}
     with pytest.raises(WebSocketDisconnect), client.websocket_connect(LIVE, headers=evil):
         pass
+    # another site's <img> or fetch: refused; following a link to the page: allowed
+    other_site = {"Sec-Fetch-Site": "cross-site", "Sec-Fetch-Mode": "no-cors"}
+    assert client.get(f"/api/runs/{run}", headers=other_site).status_code == 403
+    link = {"Sec-Fetch-Site": "cross-site", "Sec-Fetch-Mode": "navigate"}
+    assert client.get("/", headers=link).status_code == 200
+    assert client.get(f"/api/runs/{run}", headers=link).status_code == 403
+
+
+def test_listening_on_every_interface_keeps_the_host_check(
+    tmp_path: Path, studio_home: None
+) -> None:
+    worker = Worker(StudioSettings(db=tmp_path / "studio.db"))
+    worker.call(lambda s: s.start())
+    app = create_app(worker, host="0.0.0.0", allow_hosts=["studio.lan"])
+    with TestClient(app, base_url=HOME) as client:
+        assert client.get("/api/session").status_code == 200
+        assert client.get("/api/session", headers={"Host": "studio.lan:8765"}).status_code == 200
+        rebound = client.post(
+            "/api/runs/1/bpm", json={"bpm": 100}, headers={"Host": "evil.example"}
+        )
+        assert rebound.status_code == 400
+
+
+def test_the_same_export_asked_twice_at_once_is_made_and_recorded_once(
+    client: TestClient,
+) -> None:
+    run = client.get("/api/session").json()["run"]
+    dancer = decode_pack(client.get(f"/api/runs/{run}/generations/0").content)[0]["dancers"][5]
+    url = f"/api/dancers/{dancer['id']}/export.gif?stiffness=0.41"
+    with ThreadPoolExecutor(4) as pool:
+        answers = list(pool.map(lambda _: client.post(url), range(4)))
+    assert [a.status_code for a in answers] == [200] * 4
+    assert len({a.content for a in answers}) == 1 and answers[0].content[:6] == b"GIF89a"
+    worker: Worker = client.app.state.worker  # type: ignore[attr-defined]
+    paths = worker.call(lambda s: [m.path for m in s.store.media(run)])
+    assert len(paths) == len(set(paths))
+    exports = worker.settings.data_dir / "exports"
+    assert not [p for p in exports.iterdir() if p.name.endswith(".part")]
 
 
 @pytest.mark.parametrize(
@@ -118,16 +157,17 @@ def test_a_dancer_on_stage_with_changed_genes_and_exports(client: TestClient) ->
     assert np.isfinite(arrays["forces"]).all()
     for bad in ("?hue=0.5", "?lankiness=2", "?lankiness=x"):
         assert client.get(f"/api/dancers/{dancer['id']}/stage{bad}").status_code == 400
-    genome = client.get(f"/api/dancers/{dancer['id']}/export.json?lankiness=0.2")
+    assert client.get(f"/api/dancers/{dancer['id']}/export.gif").status_code == 405  # POST only
+    genome = client.post(f"/api/dancers/{dancer['id']}/export.json?lankiness=0.2")
     assert "attachment" in genome.headers["content-disposition"]
     assert genome.json()["body"]["lankiness"] == 0.2
-    assert client.get(f"/api/dancers/{dancer['id']}/export.exe").status_code == 404
-    gif = client.get(f"/api/dancers/{dancer['id']}/export.gif")
+    assert client.post(f"/api/dancers/{dancer['id']}/export.exe").status_code == 404
+    gif = client.post(f"/api/dancers/{dancer['id']}/export.gif")
     assert gif.content[:6] == b"GIF89a" and gif.headers["content-type"] == "image/gif"
     worker: Worker = client.app.state.worker  # type: ignore[attr-defined]
     kinds = worker.call(lambda s: [m.kind for m in s.store.media(run)])
     assert "gif" in kinds
-    sheet = client.get(f"/api/runs/{run}/generations/0/sheet.png?frame=60")
+    sheet = client.post(f"/api/runs/{run}/generations/0/sheet.png?frame=60")
     assert sheet.content[:8] == b"\x89PNG\r\n\x1a\n"
     lineage = client.get(f"/api/dancers/{dancer['id']}/lineage").json()
     assert lineage[0]["id"] == dancer["id"] and len(lineage[0]["pose"]) == 17

@@ -32,6 +32,13 @@ def studio(
     host: Annotated[
         str, typer.Option(help="Address to listen on; anything but 127.0.0.1 is reachable.")
     ] = "127.0.0.1",
+    allow_host: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--allow-host",
+            help="With --host: a name or address others use to reach the studio (repeatable).",
+        ),
+    ] = None,
     population: Annotated[int, typer.Option(help="Dancers per generation, 12 to 20.")] = 16,
 ) -> None:
     """Breed dancers to music in your browser: pick favourites, breed the next generation."""
@@ -41,7 +48,7 @@ def studio(
     settings = StudioSettings(
         db=db or default_db_path(), song=song, resume=resume, population=population
     )
-    serve(settings, host=host, port=port, open_browser=not no_browser)
+    serve(settings, host=host, port=port, open_browser=not no_browser, allow_hosts=allow_host or [])
 
 
 def register(app: typer.Typer) -> None:

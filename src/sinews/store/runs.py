@@ -352,9 +352,17 @@ class RunStore:
         kind: str,
         individual_id: int | None = None,
     ) -> int:
-        """Record a file made from a run; its path is stored relative to `root`."""
+        """Record a file made from a run (once: the id of an existing record is returned).
+
+        Its path is stored relative to `root`.
+        """
         relative = os.path.relpath(Path(path).resolve(), self.root)
         with self._transaction() as conn:
+            known = conn.execute(
+                "SELECT id FROM media WHERE run_id = ? AND path = ?", (run_id, relative)
+            ).fetchone()
+            if known is not None:
+                return int(known[0])
             cursor = conn.execute(
                 "INSERT INTO media (run_id, individual_id, kind, path, created) "
                 "VALUES (?, ?, ?, ?, ?)",

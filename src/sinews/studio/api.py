@@ -156,17 +156,15 @@ async def breed(request: Request) -> Response:
 
 
 async def sheet(request: Request) -> FileResponse:
-    """A contact sheet PNG of a generation at ``?frame=K``."""
+    """POST: a contact sheet PNG of a generation at ``?frame=K`` (kept under its content's name)."""
     run_id, number_ = _id(request, "run"), _id(request, "generation")
     worker = _worker(request)
     people, trajs = await worker.run(lambda s: s.motion.dance_generation(run_id, number_))
     last = trajs[0].n_frames - 1
     frame = parse_whole(request.query_params.get("frame", str(last // 2)), "frame", 0, last)
     folder = worker.settings.data_dir / "exports"
-    new = not (folder / sheet_name(people, frame)).is_file()
     path = await run_in_threadpool(write_sheet, people, trajs, frame, folder)
-    if new:
-        await worker.run(lambda s: s.store.add_media(run_id, path, kind="png"))
+    await worker.run(lambda s: s.store.add_media(run_id, path, kind="png"))
     return FileResponse(path, media_type=MEDIA_TYPES["png"], filename=path.name)
 
 
@@ -215,7 +213,7 @@ async def stage(request: Request) -> Response:
 
 
 async def export(request: Request) -> Response:
-    """Download a dancer: ``export.json`` (genome), ``export.gif``, ``export.mp4`` (with sound)."""
+    """POST: a dancer as ``export.json`` (genome), ``export.gif``, ``export.mp4`` (with sound)."""
     dancer_id, genes = _id(request, "dancer"), _genes(request)
     kind = request.path_params["kind"]
     if kind not in ("json", "gif", "mp4"):
@@ -228,13 +226,11 @@ async def export(request: Request) -> Response:
         return Response(genome_json(dancer), media_type=MEDIA_TYPES[kind], headers=attachment)
     traj = await worker.run(lambda s: dance_for(dancer, kind))
     folder = worker.settings.data_dir / "exports"
-    new = not (folder / name).is_file()
     path = await run_in_threadpool(write_dancer, traj, dancer, kind, folder)
-    if new:
-        person = dancer.individual
-        await worker.run(
-            lambda s: s.store.add_media(person.run_id, path, kind=kind, individual_id=person.id)
-        )
+    person = dancer.individual
+    await worker.run(
+        lambda s: s.store.add_media(person.run_id, path, kind=kind, individual_id=person.id)
+    )
     return FileResponse(path, media_type=MEDIA_TYPES[kind], filename=name)
 
 
@@ -257,7 +253,8 @@ async def upload_song(request: Request) -> JSONResponse:
     worker = _worker(request)
     library = await worker.run(lambda s: s.songs)
     too_big = RequestError(f"{name[:80]}: larger than {library.max_bytes // 2**20} MB", 413)
-    if int(request.headers.get("content-length") or 0) > library.max_bytes:
+    declared = request.headers.get("content-length", "0")
+    if not declared.isdigit() or len(declared) > 12 or int(declared) > library.max_bytes:
         raise too_big
     received = library.incoming()
     try:
@@ -268,6 +265,11 @@ async def upload_song(request: Request) -> JSONResponse:
                 if size > library.max_bytes:
                     raise too_big
                 sink.write(chunk)
+    except OSError as exc:
+        received.unlink(missing_ok=True)
+        raise RequestError(
+            f"cannot store the song ({exc.strerror or 'write failed'})", 507
+        ) from None
     except BaseException:
         received.unlink(missing_ok=True)
         raise
@@ -287,10 +289,10 @@ routes: list[BaseRoute] = [
     Route("/api/runs/{run}/bpm", set_bpm, methods=["POST"]),
     Route("/api/runs/{run}/generations/{generation}", generation),
     Route("/api/runs/{run}/generations/{generation}/breed", breed, methods=["POST"]),
-    Route("/api/runs/{run}/generations/{generation}/sheet.png", sheet),
+    Route("/api/runs/{run}/generations/{generation}/sheet.png", sheet, methods=["POST"]),
     Route("/api/dancers/{dancer}/lineage", lineage),
     Route("/api/dancers/{dancer}/stage", stage),
-    Route("/api/dancers/{dancer}/export.{kind}", export),
+    Route("/api/dancers/{dancer}/export.{kind}", export, methods=["POST"]),
     Route("/api/songs", list_songs, methods=["GET"]),
     Route("/api/songs", upload_song, methods=["POST"]),
     WebSocketRoute("/api/live", live),

@@ -10,7 +10,7 @@ answered as one JSON line without the server's file paths.
 from __future__ import annotations
 
 import logging
-from collections.abc import AsyncIterator, Callable
+from collections.abc import AsyncIterator, Callable, Sequence
 from contextlib import AbstractAsyncContextManager, asynccontextmanager
 from pathlib import Path
 from urllib.parse import urlsplit
@@ -35,7 +35,9 @@ __all__ = ["STATIC", "create_app"]
 
 STATIC = Path(__file__).parent / "static"
 _LOOPBACK = ["127.0.0.1", "localhost", "[::1]", "::1"]
+_WILDCARDS = frozenset({"0.0.0.0", "::", ""})
 _SAFE = frozenset({"GET", "HEAD", "OPTIONS"})
+_PAGES = frozenset({"/", "/scenes"})
 _log = logging.getLogger(__name__)
 
 
@@ -48,7 +50,12 @@ async def _scenes_page(request: Request) -> FileResponse:
 
 
 class _SameOrigin:
-    """Refuse changes and websockets whose Origin is not the host they were sent to."""
+    """Refuse changes and websockets whose Origin is not the host they were sent to.
+
+    Also refuse anything another site's page asks for (``Sec-Fetch-Site:
+    cross-site``: an ``<img>``, a script, a fetch) except following a link to
+    the studio's page: no other site can read from or act on the studio.
+    """
 
     def __init__(self, app: ASGIApp) -> None:
         self.app = app
@@ -59,7 +66,10 @@ class _SameOrigin:
             origin = headers.get(b"origin", b"").decode("latin-1")
             host = headers.get(b"host", b"").decode("latin-1")
             changes = scope["type"] == "websocket" or scope["method"] not in _SAFE
-            if changes and origin and urlsplit(origin).netloc != host:
+            foreign = headers.get(b"sec-fetch-site") == b"cross-site" and not (
+                headers.get(b"sec-fetch-mode") == b"navigate" and scope["path"] in _PAGES
+            )
+            if foreign or (changes and origin and urlsplit(origin).netloc != host):
                 if scope["type"] == "websocket":
                     await send({"type": "websocket.close", "code": 1008})
                     return
@@ -78,13 +88,26 @@ def _closing(worker: Worker) -> Callable[[Starlette], AbstractAsyncContextManage
     return lifespan
 
 
-def create_app(worker: Worker, *, host: str = "127.0.0.1") -> Starlette:
+def allowed_hosts(host: str, extra: Sequence[str] = ()) -> list[str]:
+    """Host names requests may name: loopback, ``host`` unless a wildcard, and ``extra``.
+
+    The list holds even when the studio listens on every interface: a page
+    on another site that rebinds its own domain to this machine's address
+    sends its own domain as Host and is refused.
+    """
+    named = [] if host in _WILDCARDS or host in _LOOPBACK else [host]
+    return list(dict.fromkeys([*_LOOPBACK, *named, *extra]))
+
+
+def create_app(
+    worker: Worker, *, host: str = "127.0.0.1", allow_hosts: Sequence[str] = ()
+) -> Starlette:
     """The studio app around a started `Worker`.
 
     Args:
         worker: owns the studio's state; closed when the app shuts down.
-        host: the address the server listens on; a non-loopback one lets
-            any Host header through (the command warns about it).
+        host: the address the server listens on.
+        allow_hosts: further names requests may use (see `allowed_hosts`).
     """
     hidden = [str(worker.settings.data_dir), str(worker.settings.db.resolve().parent)]
 
@@ -105,7 +128,6 @@ def create_app(worker: Worker, *, host: str = "127.0.0.1") -> Starlette:
         _log.exception("studio request failed: %s", request.url.path)
         return JSONResponse({"error": f"internal error ({type(exc).__name__})"}, 500)
 
-    loopback = host in _LOOPBACK
     app = Starlette(
         routes=[
             Route("/", _page),
@@ -115,7 +137,7 @@ def create_app(worker: Worker, *, host: str = "127.0.0.1") -> Starlette:
             Mount("/static", StaticFiles(directory=STATIC), name="static"),
         ],
         middleware=[
-            Middleware(TrustedHostMiddleware, allowed_hosts=_LOOPBACK if loopback else ["*"]),
+            Middleware(TrustedHostMiddleware, allowed_hosts=allowed_hosts(host, allow_hosts)),
             Middleware(_SameOrigin),
         ],
         exception_handlers={

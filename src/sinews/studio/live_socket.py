@@ -38,7 +38,9 @@ async def live(socket: WebSocket) -> None:
     await socket.accept()
     try:
         while True:
-            message = await socket.receive_text()
+            message = await socket.receive()
+            if message["type"] == "websocket.disconnect":
+                return
             try:
                 await session.answer(socket, json_object(message))
             except SinewsError as exc:

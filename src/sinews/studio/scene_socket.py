@@ -48,6 +48,8 @@ __all__ = ["MAX_LIVE_SCENES", "MAX_STROKE_POINTS", "scene_routes"]
 MAX_LIVE_SCENES = 4
 """Scene sockets served at once (each costs the worker 60 steps a second)."""
 MAX_STROKE_POINTS = 2000
+MAX_WAITING_STROKES = 8
+"""Strokes received but not yet drawn (one is drawn per frame)."""
 """Most points in one drawn stroke."""
 _METRES = 100.0
 """How far from the origin a pointer or stroke point may be."""
@@ -102,9 +104,7 @@ class _Session:
                 if message["type"] == "websocket.disconnect":
                     break
                 try:
-                    if message.get("text") is None:
-                        raise RequestError("messages must be JSON text")
-                    await self.answer(json_object(message["text"]))
+                    await self.answer(json_object(message))
                 except SinewsError as exc:
                     await self.send(self.socket.send_json, {"op": "error", "error": str(exc)})
         finally:
@@ -172,6 +172,8 @@ class _Session:
         if self.name != "scribbles":
             raise RequestError("only Scribbles takes drawings")
         seq = whole(request.get("seq"), "seq", 0, 2**24)
+        if len(self.strokes) >= MAX_WAITING_STROKES:
+            raise RequestError("strokes are coming faster than the scene can draw them")
         points = request.get("points")
         if not isinstance(points, list) or not 2 <= len(points) <= MAX_STROKE_POINTS:
             raise RequestError(f"points must be a list of 2 to {MAX_STROKE_POINTS} [x, y] pairs")

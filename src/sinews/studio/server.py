@@ -7,7 +7,7 @@ import sys
 import threading
 import time
 import webbrowser
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 
 from sinews.errors import SinewsError, missing_extra
 from sinews.studio.service import StudioSettings, Worker
@@ -23,6 +23,7 @@ def serve(
     host: str = "127.0.0.1",
     port: int = 8765,
     open_browser: bool = True,
+    allow_hosts: Sequence[str] = (),
     say: Callable[[str], None] = print,
 ) -> None:
     """Run the studio until interrupted (Ctrl+C).
@@ -36,6 +37,8 @@ def serve(
         host: address to listen on (loopback unless you mean to share it).
         port: port to listen on; 0 picks a free one.
         open_browser: open the page in the default browser once it is up.
+        allow_hosts: names or addresses, beyond loopback and ``host``, that
+            requests may name in their Host header (see `create_app`).
         say: where the address is printed (warnings go to stderr).
 
     Raises:
@@ -45,11 +48,13 @@ def serve(
     try:
         import uvicorn
 
-        from sinews.studio.app import create_app
+        from sinews.studio.app import allowed_hosts, create_app
     except ImportError as exc:
         raise missing_extra(exc.name or "starlette", "studio") from None
     if host not in LOOPBACK:
-        print(f"warning: --host {host} lets other machines reach the studio; it has no login",
+        names = ", ".join(allowed_hosts(host, allow_hosts))
+        print(f"warning: --host {host} lets other machines reach the studio; it has no login. "
+              f"Requests must name one of these hosts: {names} (add more with --allow-host)",
               file=sys.stderr)  # fmt: skip
     listener = _bind(host, port)
     worker = Worker(settings)
@@ -61,7 +66,9 @@ def serve(
         raise
     bound = listener.getsockname()[1]
     url = f"http://{'localhost' if host == '::1' else host}:{bound}/"
-    config = uvicorn.Config(create_app(worker, host=host), log_level="warning", lifespan="on")
+    config = uvicorn.Config(
+        create_app(worker, host=host, allow_hosts=allow_hosts), log_level="warning", lifespan="on"
+    )
     server = uvicorn.Server(config)
     say(f"sinews studio: {url} (run {run_id}, database {settings.db}); Ctrl+C stops it")
     sys.stdout.flush()

@@ -132,8 +132,12 @@ class SongLibrary:
             suffix = Path(filename).suffix.lower()
             target = self.folder / f"{song_id}{suffix if suffix in _EXTENSIONS else '.audio'}"
             if self._audio_file(song_id) is None:
-                os.replace(received, target)
-                (self.folder / f"{song_id}.json").write_text(json.dumps({"name": name}))
+                try:
+                    (self.folder / f"{song_id}.json").write_text(json.dumps({"name": name}))
+                    os.replace(received, target)
+                except OSError as exc:
+                    (self.folder / f"{song_id}.json").unlink(missing_ok=True)
+                    raise SongError(f"{name}: cannot store the song ({exc.strerror})") from None
             return self._upload(song_id), features
         finally:
             received.unlink(missing_ok=True)

@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-import json
 import math
 from collections.abc import Iterable, Mapping
 from typing import Any
 
 from starlette.requests import Request
 
+from sinews import safe_json
 from sinews.errors import SinewsError
 
 __all__ = [
@@ -51,10 +51,7 @@ async def body_fields(
         raw += chunk
         if len(raw) > MAX_JSON_BYTES:
             raise RequestError(f"request body larger than {MAX_JSON_BYTES // 1024} KB", 413)
-    try:
-        body = json.loads(raw or b"null")
-    except (json.JSONDecodeError, UnicodeDecodeError):
-        raise RequestError("request body is not valid JSON") from None
+    body = _parse(raw or b"null", "request body")
     if not isinstance(body, dict):
         raise RequestError("request body must be a JSON object")
     needed, allowed = set(required), set(required) | set(optional)
@@ -67,21 +64,33 @@ async def body_fields(
     return body
 
 
-def json_object(message: str) -> dict[str, Any]:
+def json_object(message: str | Mapping[str, Any]) -> dict[str, Any]:
     """A websocket message: a JSON object of at most `MAX_JSON_BYTES` characters.
 
+    Args:
+        message: the text, or the ASGI ``websocket.receive`` message holding it.
+
     Raises:
-        RequestError: too long, not JSON, or not an object.
+        RequestError: binary, too long, not JSON, or not an object.
     """
+    if not isinstance(message, str):
+        if message.get("text") is None:
+            raise RequestError("messages must be JSON text")
+        message = str(message["text"])
     if len(message) > MAX_JSON_BYTES:
         raise RequestError(f"messages must be shorter than {MAX_JSON_BYTES // 1024} KB")
-    try:
-        request = json.loads(message)
-    except json.JSONDecodeError:
-        raise RequestError("messages must be JSON") from None
+    request = _parse(message, "message")
     if not isinstance(request, dict):
         raise RequestError("messages must be JSON objects")
     return request
+
+
+def _parse(text: str | bytes, what: str) -> Any:
+    """JSON within `safe_json`'s bounds (digits, depth, no NaN); `RequestError` otherwise."""
+    try:
+        return safe_json.loads(text)
+    except SinewsError as exc:
+        raise RequestError(f"{what}: {exc}") from None
 
 
 def number(value: object, name: str, lo: float, hi: float) -> float:
@@ -119,8 +128,8 @@ def point(value: object, name: str, limit: float) -> tuple[float, float]:
 
 def parse_whole(text: str, name: str, lo: int, hi: int) -> int:
     """An integer in [lo, hi] written in a path or query."""
-    if not text.isascii() or not text.isdigit():
-        raise RequestError(f"{name} must be a whole number")
+    if not text.isascii() or not text.isdigit() or len(text) > len(str(hi)):
+        raise RequestError(f"{name} must be a whole number from {lo} to {hi}")
     return whole(int(text), name, lo, hi)
 
 

@@ -59,9 +59,9 @@ export async function postFile(url, file) {
   return (await send(url, init)).json();
 }
 
-/** Fetch a file and hand it to the browser as a download; resolves to its name. */
+/** Ask for a file to be made (POST) and hand it to the browser as a download; resolves to its name. */
 export async function download(url) {
-  const response = await send(url);
+  const response = await send(url, { method: "POST" });
   const disposition = response.headers.get("Content-Disposition") || "";
   const name = (disposition.match(/filename="?([^";]+)"?/) || [])[1] || "sinews-export";
   const link = document.createElement("a");
