@@ -10,6 +10,7 @@ import numpy as np
 import typer
 
 from sinews.cli.progress import frame_progress
+from sinews.limits import MAX_PICTURE_PIXELS, MIN_PICTURE_PIXELS
 from sinews.scenes.catalog import SCENE_NAMES, make_scene, player
 from sinews.scenes.video import save_scene
 
@@ -35,7 +36,12 @@ def scene(
         ),
     ] = True,
     debug_overlay: Annotated[bool, typer.Option(help="Draw node labels and force arrows.")] = False,
-    height: Annotated[int, typer.Option(min=16, help="Picture height in pixels.")] = 360,
+    height: Annotated[
+        int,
+        typer.Option(
+            min=MIN_PICTURE_PIXELS, max=MAX_PICTURE_PIXELS, help="Picture height in pixels."
+        ),
+    ] = 360,
 ) -> None:
     """Play a prototype scene (Falling for You, Kitten Avalanche, Scribbles) and draw it."""
     playing = make_scene(name, np.random.default_rng(seed), record_forces=debug_overlay)

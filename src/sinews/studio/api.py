@@ -24,7 +24,6 @@ from sinews.studio.exports import (
     dance_for,
     export_name,
     genome_json,
-    sheet_name,
     write_dancer,
     write_sheet,
 )
