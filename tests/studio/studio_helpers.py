@@ -5,9 +5,10 @@ from __future__ import annotations
 import queue
 import signal
 import subprocess
-import sys
 import threading
 from pathlib import Path
+
+from killed_runs import sinews_command
 
 CHROMIUM = Path("/usr/bin/chromium")
 CHROMIUM_ARGS = [
@@ -22,8 +23,7 @@ class StudioServer:
     """``sinews studio`` in a subprocess; ``url`` once it listens."""
 
     def __init__(self, db: Path, env: dict[str, str], *args: str) -> None:
-        code = "import sys; from sinews.cli import main; sys.exit(main(sys.argv[1:]))"
-        command = [sys.executable, "-c", code, "studio", "--no-browser", "--port", "0"]
+        command = [*sinews_command(), "studio", "--no-browser", "--port", "0"]
         self.process = subprocess.Popen(
             [*command, "--db", str(db), *args],
             env=env,

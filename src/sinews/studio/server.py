@@ -49,6 +49,7 @@ def serve(
         import uvicorn
 
         from sinews.studio.app import allowed_hosts, create_app
+        from sinews.studio.connections import MAX_CONNECTIONS, GuardedHttp
     except ImportError as exc:
         raise missing_extra(exc.name or "starlette", "studio") from None
     if host not in LOOPBACK:
@@ -67,7 +68,11 @@ def serve(
     bound = listener.getsockname()[1]
     url = f"http://{'localhost' if host == '::1' else host}:{bound}/"
     config = uvicorn.Config(
-        create_app(worker, host=host, allow_hosts=allow_hosts), log_level="warning", lifespan="on"
+        create_app(worker, host=host, allow_hosts=allow_hosts),
+        log_level="warning",
+        lifespan="on",
+        http=GuardedHttp,
+        limit_concurrency=MAX_CONNECTIONS,
     )
     server = uvicorn.Server(config)
     say(f"sinews studio: {url} (run {run_id}, database {settings.db}); Ctrl+C stops it")
