@@ -18,6 +18,7 @@ from rich.console import Console
 from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn, TimeRemainingColumn
 from rich.table import Table
 
+from sinews.errors import SinewsError
 from sinews.evolve import EVALUATORS, Evaluator, make_evaluator
 from sinews.experiments import dancer_evolution
 from sinews.experiments.evolution import (
@@ -78,11 +79,35 @@ def default_executor(info: RunInfo) -> str:
 
 
 def best_of(store: RunStore, run_id: int) -> Individual:
-    """The run's best: for figure runs rated at full style weight (see `best_at_full_weight`)."""
+    """The run's best: for figure runs rated at full style weight (see `best_at_full_weight`);
+    for runs bred by hand, the person's latest pick."""
     info = store.run(run_id)
+    if EvolutionConfig.from_dict(info.config).by_hand:
+        picks = store.picks(run_id)
+        if not picks:
+            raise SinewsError(f"run {run_id} is bred by hand and nothing is picked yet")
+        return picks[-1]
     if experiment_of(info) is None:
         return store.best(run_id)
     return best_at_full_weight(store, run_id, EvolutionConfig.from_dict(info.config).fitness)
+
+
+def _print_picks(store: RunStore, run_id: int) -> None:
+    picks = store.picks(run_id)
+    table = Table(title=f"run {run_id}: bred by hand, the picks of each generation",
+                  box=box.SIMPLE_HEAD, show_edge=False)  # fmt: skip
+    for column in ("gen", "picked (index: individual id)"):
+        table.add_column(column)
+    for generation in sorted({p.generation for p in picks}):
+        chosen = [f"{p.index}: {p.id}" for p in picks if p.generation == generation]
+        table.add_row(str(generation), ", ".join(chosen))
+    console = Console()
+    console.print(table)
+    if picks:
+        console.print(f"latest pick: individual {picks[-1].id}; save it with:\n"
+                      f"  sinews runs best {run_id} -o dancer.json")  # fmt: skip
+    else:
+        console.print("nothing picked yet")
 
 
 def run_with_progress(
@@ -130,7 +155,13 @@ def run_with_progress(
 
 
 def print_summary(store: RunStore, run_id: int) -> None:
-    """A table of best and mean fitness and the best's terms per generation, then the winner."""
+    """A table of best and mean fitness and the best's terms per generation, then the winner.
+
+    Runs bred by hand have no fitness: their table lists each generation's picks.
+    """
+    if EvolutionConfig.from_dict(store.run(run_id).config).by_hand:
+        _print_picks(store, run_id)
+        return
     stats = generation_stats(store.scores(run_id))
     terms = stats.best_terms if len(stats.best_terms) > 1 else {}  # one term: = best
     table = Table(

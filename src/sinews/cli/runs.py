@@ -70,14 +70,18 @@ def list_runs(db: Db = None) -> None:
         ):
             table.add_column(column)
         for info in store.runs():
+            by_hand = EvolutionConfig.from_dict(info.config).by_hand
+            song = str(info.config.get("song", ""))
             table.add_row(
                 str(info.id),
                 info.kind,
-                info.status,
-                f"{info.generations}/{info.config.get('generations', '?')}",
+                "by hand" if by_hand else info.status,
+                f"{info.generations}"
+                if by_hand
+                else f"{info.generations}/{info.config.get('generations', '?')}",
                 str(info.config.get("population", "?")),
                 _number(info.best_fitness),
-                str(info.config.get("song", "")),
+                song if song.startswith("demo:") else Path(song).name,
                 info.created,
             )
         Console().print(table)
@@ -321,6 +325,8 @@ def plot(run: Run, output: Output, db: Db = None) -> None:
 
     with open_store(db) as store:
         info = store.run(run)
+        if EvolutionConfig.from_dict(info.config).by_hand:
+            raise SinewsError(f"run {run} is bred by hand: it has picks, not fitness, to plot")
         stats = generation_stats(store.scores(run))
         if not len(stats.generations):
             raise SinewsError(f"run {run} has no scored generations yet")

@@ -71,6 +71,11 @@ class EvolutionConfig:
         if self.seed < 0:
             raise ConfigError(f"seed must be >= 0, got {self.seed}")
 
+    @property
+    def by_hand(self) -> bool:
+        """Bred by a person's picks alone (the studio's runs): no fitness is measured."""
+        return self.strategy == "interactive"
+
     def to_dict(self) -> dict[str, Any]:
         """The JSON stored as a run's config (kind-specific keys are added beside)."""
         return {

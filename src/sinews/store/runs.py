@@ -293,6 +293,12 @@ class RunStore:
             raise StoreError(f"run {run_id} has no scored individuals")
         return self.individual(int(rows[0][0]))
 
+    def picks(self, run_id: int) -> list[Individual]:
+        """The individuals a person picked, oldest generation first (empty if none)."""
+        return self._individuals(
+            "i.run_id = ? AND i.picked = 1", [run_id], order="i.generation, i.idx"
+        )
+
     def lineage(self, individual_id: int) -> list[Individual]:
         """The individual and all its ancestors (recursive CTE), newest generation first."""
         self.individual(individual_id)
