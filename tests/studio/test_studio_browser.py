@@ -24,6 +24,8 @@ INK = """(selector) => [...document.querySelectorAll(selector)].map((canvas) => 
   return { ink, picture: canvas.toDataURL() };
 })"""
 
+IDLE = "!document.body.classList.contains('busy')"
+
 NEXT_FRAME = """() => new Promise((resolve) => requestAnimationFrame(() => resolve(
   [Number(document.body.dataset.frame), studio.clock.context.currentTime - studio.clock.start]
 )))"""
@@ -211,7 +213,7 @@ def test_ten_generations_survive_a_killed_server(
             for index in {generation % 16, (5 * generation + 3) % 16}:
                 page.click(f".cell[data-index='{index}']")
             page.click("#breed")
-            page.wait_for_function(f"studio.generationNumber === {generation + 1}")
+            page.wait_for_function(f"studio.generationNumber === {generation + 1} && {IDLE}")
         bred = [c["id"] for c in cells(page)]
     finally:
         first.kill()
@@ -226,3 +228,33 @@ def test_ten_generations_survive_a_killed_server(
         page.wait_for_function("studio.generationNumber === 11")
     finally:
         again.stop()
+
+
+def test_nothing_can_be_clicked_until_the_first_generation_shows(
+    page: Any, server: StudioServer
+) -> None:
+    page.goto(server.url)
+    # the page starts locked; the class goes only when the generation is on screen
+    page.wait_for_function("!document.body.classList.contains('starting')")
+    assert page.evaluate("studio.generation !== null && studio.stage.pack !== undefined")
+    expect(page.locator(".cell canvas")).to_have_count(16)
+
+
+def test_breeding_stages_a_child_and_a_reload_comes_back_to_it(
+    page: Any, server: StudioServer
+) -> None:
+    open_studio(page, server.url)
+    fresh_run(page)
+    page.click(".cell[data-index='4']")
+    page.click("#breed")
+    page.wait_for_function(
+        "studio.generationNumber === 1 && !document.body.classList.contains('busy')"
+    )
+    expect(page.locator("#stage-title")).to_have_text(re.compile(r"Stage: gen 1 #\d+"))
+    children = {c["id"] for c in cells(page)}
+    assert page.evaluate("studio.staged") in children
+    run = page.evaluate("studio.run.id")
+    assert page.url.endswith(f"#run={run}&gen=1")
+    page.reload()
+    page.wait_for_function("window.studio && studio.generation && studio.stage.pack")
+    assert page.evaluate("[studio.run.id, studio.generationNumber]") == [run, 1]

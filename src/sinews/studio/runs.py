@@ -140,6 +140,16 @@ class StudioRuns:
         """Every interactive dancer run in the store, newest first."""
         return [self.get(info.id) for info in reversed(self.store.runs()) if _is_studio(info)]
 
+    def latest(self) -> int | None:
+        """The newest studio run that can still be opened (its song is there), if any."""
+        for info in reversed(self.store.runs()):
+            if _is_studio(info) and info.generations:
+                try:
+                    return self.get(info.id).id
+                except SinewsError:
+                    continue
+        return None
+
     def info(self, run_id: int) -> RunInfo:
         """The stored run, checked to be one the studio can breed."""
         info = self.store.run(run_id)

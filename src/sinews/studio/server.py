@@ -65,6 +65,9 @@ def serve(
         worker.close()
         listener.close()
         raise
+    # simulate the first generation (compiling the kernels on a first start) while the
+    # browser opens: the page's first request then finds it ready or nearly so
+    worker.submit(lambda s: s.motion.generation(run_id, s.runs.get(run_id).last))
     bound = listener.getsockname()[1]
     url = f"http://{'localhost' if host == '::1' else host}:{bound}/"
     config = uvicorn.Config(

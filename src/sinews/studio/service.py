@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import asyncio
 from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TypeVar
@@ -66,14 +66,21 @@ class Studio:
         self.first_run = -1
 
     def start(self) -> int:
-        """Check the settings and open the run the page starts on (a new one unless resuming).
+        """Check the settings and open the run the page starts on.
+
+        That is the run to resume; else, with no song given, the newest studio
+        run (a plain ``sinews studio`` carries on where the last one stopped);
+        else a new run on the song.
 
         Raises:
             SinewsError: the song cannot be read, or the run to resume is not
                 an interactive dancer run.
         """
+        latest = self.runs.latest() if self.settings.song is None else None
         if self.settings.resume is not None:
             self.first_run = self.runs.get(self.settings.resume).id
+        elif latest is not None:
+            self.first_run = latest
         else:
             given = self.settings.song
             song = self.songs.demo() if given is None else self.songs.import_file(given)
@@ -96,6 +103,10 @@ class Worker:
         self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="sinews-studio")
         self._studio: Studio | None = None
         self.settings = settings
+
+    def submit(self, fn: Callable[[Studio], T]) -> Future[T]:
+        """Queue ``fn(studio)`` on the worker thread and return at once."""
+        return self._pool.submit(self._run, fn)
 
     def call(self, fn: Callable[[Studio], T]) -> T:
         """Run ``fn(studio)`` on the worker thread and wait for it (from any thread)."""

@@ -79,7 +79,7 @@ def json_object(message: str | Mapping[str, Any]) -> dict[str, Any]:
         message = str(message["text"])
     if len(message) > MAX_JSON_BYTES:
         raise RequestError(f"messages must be shorter than {MAX_JSON_BYTES // 1024} KB")
-    request = _parse(message, "message")
+    request = _parse(message, "messages must be JSON")
     if not isinstance(request, dict):
         raise RequestError("messages must be JSON objects")
     return request

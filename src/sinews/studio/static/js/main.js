@@ -59,6 +59,7 @@ class Studio {
   }
 
   async start() {
+    this.message("Warming up: the first generation is being simulated (a first start also compiles the simulator)…");
     const session = await getJSON("/api/session");
     this.maxUpload = session.maxUpload;
     const mutation = $("mutation");
@@ -67,14 +68,29 @@ class Studio {
     this.showMutation();
     this.makeSliders(session.sliders);
     this.stage.resize();
-    this.run = await getJSON(`/api/runs/${session.run}`);
+    const wanted = this.wantedPlace();
+    this.run = await getJSON(`/api/runs/${wanted ? wanted.run : session.run}`).catch(() => null);
+    if (!this.run) this.run = await getJSON(`/api/runs/${session.run}`);
     await this.songs.refresh(session.songs);
-    await this.openRun(this.run);
+    const generation = wanted && wanted.run === this.run.id && wanted.generation <= this.run.last
+      ? wanted.generation : this.run.last;
+    await this.openRun(this.run, generation);
+    document.body.classList.remove("starting");
+    this.message("");
     const tick = () => {
       this.draw();
       requestAnimationFrame(tick);
     };
     requestAnimationFrame(tick);
+  }
+
+  /** The run and generation named in the address (#run=3&gen=5): a reload comes back there. */
+  wantedPlace() {
+    const params = new URLSearchParams(location.hash.slice(1));
+    const run = Number(params.get("run"));
+    const generation = Number(params.get("gen"));
+    if (!Number.isInteger(run) || run < 1 || !Number.isInteger(generation) || generation < 0) return null;
+    return { run, generation };
   }
 
   draw() {
@@ -159,6 +175,7 @@ class Studio {
   setGeneration(pack) {
     this.generation = pack;
     this.generationNumber = pack.header.generation;
+    history.replaceState(null, "", `#run=${this.run.id}&gen=${this.generationNumber}`);
     this.fps = pack.header.fps;
     this.grid.show(pack);
     this.grid.setStaged(this.staged);
@@ -225,6 +242,9 @@ class Studio {
       }
       this.setGeneration(pack);
       $("breed-info").textContent = `bred in ${Math.round(this.lastBreedMs)} ms`;
+      // the staged dancer belongs to the old generation: stage a child, so exports are of it
+      this.staged = pack.header.dancers[0].id;
+      await this.stageDancer(this.staged);
     });
   }
 
