@@ -19,6 +19,7 @@ import numpy as np
 import numpy.typing as npt
 import soundfile as sf
 
+from sinews.limits import MAX_SECONDS  # the longest song, checked before decoding
 from sinews.music.errors import AudioError
 from sinews.music.ffmpeg import FfmpegFailed, decode_with_ffmpeg, find_ffmpeg
 
@@ -27,8 +28,6 @@ __all__ = ["MAX_SECONDS", "MIN_SECONDS", "Audio", "check_readable_file", "load_a
 MIN_SECONDS = 0.5
 """Shortest song we accept: shorter files cannot carry a beat."""
 
-MAX_SECONDS = 20 * 60.0
-"""Longest song we accept (checked from the header, before decoding)."""
 
 _BLOCK_FRAMES = 8192
 _READ_BLOCK_FRAMES = 1 << 18
