@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import subprocess
 from collections.abc import Iterator
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
@@ -244,3 +245,27 @@ def test_the_live_socket_steps_and_pulls(client: TestClient) -> None:
         assert "node must be in" in ws.receive_json()["error"]
         ws.send_text("nonsense")
         assert ws.receive_json()["op"] == "error"
+
+
+def test_an_upload_to_a_full_disk_is_a_one_line_507_and_leaves_nothing(
+    tmp_path: Path, studio_home: None
+) -> None:
+    worker = Worker(StudioSettings(db=tmp_path / "studio.db"))
+    worker.call(lambda s: s.start())
+    songs = worker.settings.data_dir / "songs"
+    songs.mkdir(parents=True, exist_ok=True)
+    small = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=64k", "tmpfs", str(songs)],
+                           capture_output=True)  # fmt: skip
+    if small.returncode != 0:
+        worker.close()
+        pytest.skip("a small tmpfs to fill needs root")
+    try:
+        with TestClient(create_app(worker), base_url=HOME) as client:
+            flac = (DATA / "loop_compus.flac").read_bytes()
+            full = client.post("/api/songs", content=flac, headers={"X-Song-Name": "a.flac"})
+            assert full.status_code == 507, full.text
+            assert "cannot store the song" in full.json()["error"]
+            assert not [p for p in songs.rglob("*") if p.is_file()]
+            assert client.get("/api/songs").status_code == 200
+    finally:
+        subprocess.run(["umount", str(songs)], check=True)
