@@ -80,7 +80,7 @@ def test_children_keep_the_list_root_the_limits_and_their_lineage(
 ) -> None:
     gp = _strategy(
         seed, crossover_rate=0.9 - mutation, mutation_rate=mutation, selection=selection,
-        any_slot=any_slot, max_depth=6, max_size=25, elites=1,
+        any_slot=any_slot, max_depth=6, max_size=25, elites=1, max_copies=1.0,
     )  # fmt: skip
     previous = gp.ask()
     for _ in range(3):
@@ -91,8 +91,7 @@ def test_children_keep_the_list_root_the_limits_and_their_lineage(
         for child, (first, second) in zip(children, parents.tolist(), strict=True):
             assert len(child) == 3
             assert 0 <= first < 20 and -1 <= second < 20
-            if child not in previous:  # new material must meet the limits (copies may not)
-                assert program_depth(child) <= 6 and program_size(child) <= 25
+            assert program_depth(child) <= 6 and program_size(child) <= 25  # all, from gen 0
             if second == -1 and child != previous[first]:  # a mutant
                 assert mutation > 0
         assert children[0] == previous[int(np.argmax(_score(previous)))]  # the elite
@@ -101,18 +100,46 @@ def test_children_keep_the_list_root_the_limits_and_their_lineage(
         previous = children
 
 
-def test_a_child_over_the_limit_is_its_first_parent() -> None:
-    gp = _strategy(3, max_depth=2, init_depth=(2, 2), crossover_rate=1.0)
+def test_a_child_over_the_limit_is_drawn_again_not_copied_from_a_parent() -> None:
+    """At depth limit 2, most crossovers of depth-2 trees break it: each is redrawn."""
+    gp = _strategy(3, max_depth=2, init_depth=(2, 2), crossover_rate=1.0, max_copies=1.0)
     previous = gp.ask()
     gp.tell(_score(previous))
     children = gp.ask()
-    replaced = 0
-    for child, (first, second) in zip(children, gp.parents.tolist(), strict=True):
+    for child, (_, second) in zip(children, gp.parents.tolist(), strict=True):
         assert program_depth(child) <= 2
-        if second == -1:
-            assert child == previous[first]
-            replaced += 1
-    assert 0 < replaced < 20
+        assert second >= 0  # every child is a crossover child of two parents
+    copies = sum(child in previous for child in children)
+    assert copies <= 4, f"{copies} of 20 children are copies of a parent"
+
+
+@settings(max_examples=25, deadline=None)
+@given(seed=seeds, max_size=st.integers(3, 60), high=st.integers(2, 8))
+def test_no_generation_0_tree_is_over_the_limits(seed: int, max_size: int, high: int) -> None:
+    """Ramped half-and-half over ifltz (arity 3) would make full trees of 1093 nodes at depth 6."""
+    gp = _strategy(seed, size=30, max_size=max_size, max_depth=8, init_depth=(1, high))
+    for program in gp.ask():
+        assert all(len(tree) <= max_size and tree.depth <= 8 for tree in program)
+
+
+def test_one_outstanding_program_does_not_copy_itself_over_the_population() -> None:
+    """The worst case for diversity: one program far better than all others, every time.
+
+    Tournaments copy and cross it everywhere; the copy guard keeps more than
+    half of the population distinct for 20 generations.
+    """
+    gp = _strategy(5, size=60, crossover_rate=0.8, mutation_rate=0.1)
+    population = gp.ask()
+    for _ in range(20):
+        gp.tell(np.where(np.arange(60) == 0, 100.0, _score(population)))
+        population = gp.ask()
+        assert len(set(population)) > 30
+    unguarded = _strategy(5, size=60, crossover_rate=0.8, mutation_rate=0.1, max_copies=1.0)
+    population = unguarded.ask()
+    for _ in range(20):
+        unguarded.tell(np.where(np.arange(60) == 0, 100.0, _score(population)))
+        population = unguarded.ask()
+    assert len(set(population)) < len(set(gp.population))
 
 
 def test_selection_favours_the_fit_and_never_picks_the_failed() -> None:

@@ -12,9 +12,14 @@ Breeding follows Koza's generational scheme as the paper used it: generation
 0 is ramped half-and-half; each later one is ``crossover_rate`` crossover
 children (made in pairs), ``mutation_rate`` subtree mutants (0 by default, "we
 did not use mutation") and the rest reproduced copies, parents chosen by
-tournament or fitness-proportionately. A child over the `Limits` is replaced
-by its first parent (``staticLimit``). ``elites`` best individuals may be
+tournament or fitness-proportionately. ``elites`` best individuals may be
 copied first (0 in the paper).
+
+Two departures keep populations from freezing on one early program (measured
+in docs/gp.md): a child over the `Limits` is drawn again at other points, not
+replaced by a copy of its parent (`within_limits`); and no program may stand
+more than ``max_copies`` (a share of P) times in a generation: an extra copy
+is mutated instead.
 """
 
 from __future__ import annotations
@@ -37,9 +42,11 @@ from sinews.control.gp import (
     decode_program,
     encode_program,
     format_program,
+    leaf_crossover,
     mutate,
     parse_program,
     ramped_half_and_half,
+    within_limits,
 )
 from sinews.evolve._state import decode_rng, encode_rng
 from sinews.evolve.errors import StrategyError
@@ -68,6 +75,8 @@ class GPVariation:
         max_size: most nodes allowed in a child's tree.
         init_depth: (min, max) depth of the ramped initial trees (Koza: 2 to 6).
         mutation_depth: depth limit of a mutation's new subtree.
+        max_copies: the most times one program may stand in a generation, as
+            a share of the population (at least once); 1.0 turns the guard off.
     """
 
     crossover_rate: float = 0.9
@@ -80,6 +89,7 @@ class GPVariation:
     max_size: int = 200
     init_depth: tuple[int, int] = (2, 6)
     mutation_depth: int = 4
+    max_copies: float = 0.05
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "init_depth", tuple(int(d) for d in self.init_depth))
@@ -92,6 +102,8 @@ class GPVariation:
             )
         if self.tournament_size < 1 or self.elites < 0 or self.mutation_depth < 0:
             raise StrategyError("tournament_size must be >= 1, elites and mutation_depth >= 0")
+        if not 0 < self.max_copies <= 1:
+            raise StrategyError(f"max_copies must be in (0, 1], got {self.max_copies}")
         low, high = self.init_depth
         if not 0 <= low <= high <= self.max_depth:
             raise StrategyError("init_depth must be (min, max) with 0 <= min <= max <= max_depth")
@@ -189,7 +201,7 @@ class GPStrategy(AskTell[list[Program]]):
         low, high = self.variation.init_depth
         return ramped_half_and_half(
             self.pset, self.rng, n_programs=self.population_size, n_trees=self.n_trees,
-            min_depth=low, max_depth=high,
+            min_depth=low, max_depth=high, max_size=self.variation.max_size,
         )  # fmt: skip
 
     def _select(self, count: int) -> IntArray:
@@ -212,17 +224,47 @@ class GPStrategy(AskTell[list[Program]]):
             pair = crossover(old[i], old[j], self.rng, any_slot=v.any_slot)
             for child, (first, second) in zip(pair, ((i, j), (j, i)), strict=True):
                 if len(children) < v.elites + n_cross:
-                    admitted = v.limits.admits(child)
-                    children.append(child if admitted else old[first])
-                    parents.append((first, second if admitted else -1))
+                    if not v.limits.admits(child):
+                        child = self._cross_within_limits(old[first], old[second])
+                    children.append(child)
+                    parents.append((first, second))
         for i in self._select(n_mutate).tolist():
-            child = mutate(old[i], self.pset, self.rng, depth=v.mutation_depth)
-            children.append(child if v.limits.admits(child) else old[i])
+            children.append(self._mutant(old[i]))
             parents.append((i, -1))
         for i in self._select(size - len(children)).tolist():
             children.append(old[i])
             parents.append((i, -1))
-        return children, np.array(parents, dtype=np.int64)
+        return self._diverse(children), np.array(parents, dtype=np.int64)
+
+    def _cross_within_limits(self, a: Program, b: Program) -> Program:
+        """A child of ``a`` and ``b`` within the limits (see `within_limits`)."""
+        v = self.variation
+        return within_limits(
+            lambda: crossover(a, b, self.rng, any_slot=v.any_slot)[0],
+            lambda: leaf_crossover(a, b, self.rng),
+            v.limits,
+        )
+
+    def _mutant(self, program: Program) -> Program:
+        """A subtree mutant of ``program`` within the limits (a depth-0 one never grows)."""
+        v = self.variation
+        return within_limits(
+            lambda: mutate(program, self.pset, self.rng, depth=v.mutation_depth, limits=v.limits),
+            lambda: mutate(program, self.pset, self.rng, depth=0),
+            v.limits,
+        )
+
+    def _diverse(self, children: list[Program]) -> list[Program]:
+        """``children`` with each program's copies past ``max_copies`` mutated (in order)."""
+        most = max(1, int(self.variation.max_copies * self.population_size))
+        seen: dict[Program, int] = {}
+        kept = []
+        for child in children:
+            if seen.get(child, 0) >= most:
+                child = self._mutant(child)
+            seen[child] = seen.get(child, 0) + 1
+            kept.append(child)
+        return kept
 
     # -- genomes and checkpoints ------------------------------------------------
 

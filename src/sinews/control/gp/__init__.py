@@ -24,10 +24,12 @@ from sinews.control.gp.interpreter import PackedPopulation, reference_population
 from sinews.control.gp.operators import (
     Limits,
     crossover,
+    leaf_crossover,
     mutate,
     pick_point,
     ramped_half_and_half,
     random_tree,
+    within_limits,
 )
 from sinews.control.gp.primitives import (
     BASIC_FUNCTIONS,
@@ -67,6 +69,7 @@ __all__ = [
     "encode_program",
     "format_program",
     "format_tree",
+    "leaf_crossover",
     "mutate",
     "parse_program",
     "parse_tree",
@@ -77,4 +80,5 @@ __all__ = [
     "random_tree",
     "reference_population",
     "reference_tree",
+    "within_limits",
 ]

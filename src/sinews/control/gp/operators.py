@@ -5,13 +5,18 @@ so the same generator state gives the same programs.
 
 Koza's choices (the paper follows his book): initial trees of depth 2 to 6,
 half grown and half full; crossover points are function nodes 90% of the
-time; children deeper than 17 are not allowed. Here a child over the `Limits`
-is replaced by a copy of its parent (DEAP's ``staticLimit``), which the
-strategy applies (see `sinews.evolve.gp`).
+time; children deeper than 17 are not allowed. Every tree made here is
+within the `Limits`: random trees respect a size budget as well as a depth
+(a full tree of depth 6 over ``ifltz`` would otherwise have 1093 nodes), and
+a crossover or mutation whose child would break a limit is drawn again at
+other points (`within_limits`), never replaced by a copy of its parent
+(DEAP's ``staticLimit``), which let one early program copy itself over a
+whole population.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -20,12 +25,15 @@ from sinews.control.gp.primitives import ARITY, CONST, VAR, GPError, PrimitiveSe
 from sinews.control.gp.tree import Program, Tree, program_depth, program_size
 
 __all__ = [
+    "WITHIN_LIMITS_TRIES",
     "Limits",
     "crossover",
+    "leaf_crossover",
     "mutate",
     "pick_point",
     "ramped_half_and_half",
     "random_tree",
+    "within_limits",
 ]
 
 INTERNAL_PROBABILITY = 0.9
@@ -53,30 +61,46 @@ class Limits:
         return program_size(program) <= self.max_size and program_depth(program) <= self.max_depth
 
 
-def random_tree(pset: PrimitiveSet, rng: np.random.Generator, depth: int, *, full: bool) -> Tree:
-    """A random tree of at most ``depth`` (exactly ``depth`` if ``full``).
+def random_tree(
+    pset: PrimitiveSet,
+    rng: np.random.Generator,
+    depth: int,
+    *,
+    full: bool,
+    max_size: int | None = None,
+) -> Tree:
+    """A random tree of at most ``depth`` (exactly ``depth`` if ``full`` and size allows).
 
     The root is a function (when ``depth`` > 0). Below it, "full" places
     functions down to ``depth``; "grow" picks uniformly among the functions
     and the terminals (all named terminals plus one for a random constant).
-    The nodes at ``depth`` are terminals.
+    The nodes at ``depth`` are terminals. With ``max_size``, a function is
+    placed only if the tree, with a terminal for every open argument, still
+    fits: functions of too many arguments are left out of the draw, and a
+    node where none fits is a terminal.
 
     Args:
         pset: the primitives.
         rng: the generator.
         depth: the depth limit (>= 0).
         full: "full" (True) or "grow" (False).
+        max_size: the most nodes the tree may have (>= 1), or None.
     """
-    functions = pset.function_codes
-    n_functions, n_leaves = len(functions), pset.n_terminals + 1
     codes: list[int] = []
     consts: list[float] = []
     slots = [0]  # depths of the nodes still to place, the next one last
+    n_leaves = pset.n_terminals + 1
+    all_functions = pset.function_codes
     while slots:
         level = slots.pop()
-        if level < depth and (full or level == 0):
+        functions = all_functions
+        if max_size is not None:  # placed + still open + this node's new arguments must fit
+            room = max_size - len(codes) - len(slots) - 1
+            functions = all_functions[ARITY[all_functions] <= room]
+        n_functions = len(functions)
+        if level < depth and n_functions and (full or level == 0):
             pick = int(rng.integers(n_functions))
-        elif level < depth:
+        elif level < depth and n_functions:
             pick = int(rng.integers(n_functions + n_leaves))
         else:
             pick = n_functions + int(rng.integers(n_leaves))
@@ -101,13 +125,15 @@ def ramped_half_and_half(
     min_depth: int = 2,
     max_depth: int = 6,
     retries: int = 20,
+    max_size: int | None = None,
 ) -> list[Program]:
     """Koza's initial population: depths ramped over the programs, half full, half grown.
 
     Program ``i`` gets depth ``min_depth + i mod (max_depth - min_depth + 1)``
     and is full on even passes over the depths, grown on odd ones; all its
-    trees share that depth and method. A program equal to an earlier one is
-    drawn again (up to ``retries`` times), so the population starts diverse.
+    trees share that depth and method, and have at most ``max_size`` nodes
+    (see `random_tree`). A program equal to an earlier one is drawn again (up
+    to ``retries`` times), so the population starts diverse.
 
     Returns:
         ``n_programs`` programs of ``n_trees`` trees each.
@@ -120,7 +146,9 @@ def ramped_half_and_half(
     for i in range(n_programs):
         depth, full = min_depth + i % n_depths, (i // n_depths) % 2 == 0
         for _ in range(retries + 1):
-            program = tuple(random_tree(pset, rng, depth, full=full) for _ in range(n_trees))
+            program = tuple(
+                random_tree(pset, rng, depth, full=full, max_size=max_size) for _ in range(n_trees)
+            )
             if program not in seen:
                 break
         seen.add(program)
@@ -133,7 +161,7 @@ def pick_point(tree: Tree, rng: np.random.Generator) -> int:
     internal = tree.internal
     if len(internal) and rng.random() < INTERNAL_PROBABILITY:
         return int(internal[rng.integers(len(internal))])
-    leaves = np.setdiff1d(np.arange(len(tree)), internal, assume_unique=True)
+    leaves = tree.leaves
     return int(leaves[rng.integers(len(leaves))])
 
 
@@ -162,13 +190,53 @@ def crossover(
 
 
 def mutate(
-    program: Program, pset: PrimitiveSet, rng: np.random.Generator, *, depth: int = 4
+    program: Program,
+    pset: PrimitiveSet,
+    rng: np.random.Generator,
+    *,
+    depth: int = 4,
+    limits: Limits | None = None,
 ) -> Program:
-    """Replace a random subtree of a random tree with a new grown tree of depth <= ``depth``."""
+    """Replace a random subtree of a random tree with a new grown tree of depth <= ``depth``.
+
+    With ``limits``, the new subtree is sized so the tree stays within
+    ``max_size`` (the depth is checked by the caller).
+    """
     slot = int(rng.integers(len(program)))
     tree = program[slot]
     point = pick_point(tree, rng)
-    return _with(program, slot, tree.replace(point, random_tree(pset, rng, depth, full=False)))
+    budget = None
+    if limits is not None:
+        budget = max(1, limits.max_size - len(tree) + len(tree.subtree(point)))
+    new = random_tree(pset, rng, depth, full=False, max_size=budget)
+    return _with(program, slot, tree.replace(point, new))
+
+
+WITHIN_LIMITS_TRIES = 20
+"""Draws of a variation before `within_limits` falls back to swapping terminals."""
+
+
+def within_limits(
+    vary: Callable[[], Program], fallback: Callable[[], Program], limits: Limits
+) -> Program:
+    """The first of up to `WITHIN_LIMITS_TRIES` draws of ``vary()`` that is within ``limits``.
+
+    If none is, ``fallback()``: a variation that cannot grow a tree (such as
+    `leaf_crossover`), so from parents within the limits it always fits.
+    """
+    for _ in range(WITHIN_LIMITS_TRIES):
+        child = vary()
+        if limits.admits(child):
+            return child
+    return fallback()
+
+
+def leaf_crossover(a: Program, b: Program, rng: np.random.Generator) -> Program:
+    """``a`` with one terminal replaced by one of ``b``'s (same slot): never grows a tree."""
+    slot = int(rng.integers(len(a)))
+    tree_a, tree_b = a[slot], b[slot]
+    i, j = int(rng.choice(tree_a.leaves)), int(rng.choice(tree_b.leaves))
+    return _with(a, slot, tree_a.replace(i, tree_b.subtree(j)))
 
 
 def _with(program: Program, slot: int, tree: Tree) -> Program:

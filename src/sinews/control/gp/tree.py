@@ -107,6 +107,11 @@ class Tree:
         """Indices of the function nodes."""
         return np.flatnonzero(self._arity > 0)
 
+    @property
+    def leaves(self) -> npt.NDArray[np.intp]:
+        """Indices of the terminals (variables and constants)."""
+        return np.flatnonzero(self._arity == 0)
+
     def end(self, i: int) -> int:
         """One past the last node of the subtree rooted at node ``i``."""
         if not 0 <= i < len(self):
