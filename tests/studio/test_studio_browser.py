@@ -94,7 +94,7 @@ def test_picking_two_and_breeding_makes_their_children(
     expect(page.locator(".cell.picked")).to_have_count(2)
     expect(page.locator("#breed")).to_have_text("Breed 2 picks")
     page.click("#breed")
-    page.wait_for_function("studio.generationNumber === 1")
+    page.wait_for_function(f"studio.generationNumber === 1 && {IDLE}")
     expect(page.locator("#generations button")).to_have_count(2)
     picks = {first[2], first[5]}
     children = cells(page)
@@ -225,7 +225,7 @@ def test_ten_generations_survive_a_killed_server(
         assert [c["id"] for c in cells(page)] == bred
         page.click(".cell[data-index='0']")
         page.click("#breed")
-        page.wait_for_function("studio.generationNumber === 11")
+        page.wait_for_function(f"studio.generationNumber === 11 && {IDLE}")
     finally:
         again.stop()
 
