@@ -57,7 +57,9 @@ def test_builtin_figures_have_the_documented_parts(build, joints, base, head) ->
     np.testing.assert_array_equal(figure.neutral, np.zeros(len(joints)))
     assert (figure.kp > 0).all() and (figure.kv > 0).all()
     assert (figure.joint_range[:, 0] < 0).all() and (figure.joint_range[:, 1] > 0).all()
-    contact = tuple(dict.fromkeys(base + head))
+    limbs = tuple(b for b in figure.body_names if b not in base + head)
+    assert figure.limb_bodies == (() if build is snake else limbs)  # a snake lies on the floor
+    contact = tuple(dict.fromkeys(base + head + figure.limb_bodies))
     assert figure.sensor_names == sensor_columns(joints, contact)
     assert figure.n_sensors == 1 + 2 * (3 + len(joints)) + 2 * len(contact)
     assert figure.sensor_names[:4] == ("time", "root_x", "root_z", "root_pitch")

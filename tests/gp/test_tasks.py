@@ -116,6 +116,22 @@ def test_terms_of_a_hand_made_motion(hop: Task) -> None:
     np.testing.assert_allclose(terms["energy"], [0.0, 0.0])
 
 
+def test_a_lamp_on_its_arm_is_down_even_upright_enough(hop: Task) -> None:
+    """Scooting on the base's edge and the upper arm (pitch under max_tilt) counts as fallen."""
+    meter = TaskMeter(hop, 2)
+    for k in range(20):
+        on_arm = 5 <= k < 12
+        sensors = sensors_for(
+            hop,
+            time=[k / 10] * 2,
+            root_pitch=[-0.9, 0.0],
+            fz_arm_upper=[4.0 if on_arm else 0.0, 0.0],
+        )
+        meter(k / 10, sensors, np.zeros((2, 3)))
+    fallen = meter.terms()[:, list(hop.weights).index("fallen")]
+    np.testing.assert_allclose(fallen, [-7 / 20, 0.0])
+
+
 def test_terms_of_a_lamp_at_rest_and_the_observer_changes_nothing(hop: Task) -> None:
     figure = hop.figure
     meter = TaskMeter(hop, 2)

@@ -68,6 +68,9 @@ class Figure:
         edges: (E, 2) int32 parent-child links as indices into ``body_names``.
         sensor_names: (S,) names of the sensor columns.
         touch_bodies: further bodies with a contact-force column (e.g. a limbo pole).
+        limb_bodies: bodies that must not rest on the floor (a lamp's arms, a
+            person's legs, arms and trunk): one that touches it means the
+            figure is down. Each has a contact-force column.
         sites: sites whose world x and z are sensor columns (e.g. a hand).
     """
 
@@ -85,6 +88,7 @@ class Figure:
     sensor_names: tuple[str, ...]
     touch_bodies: tuple[str, ...] = ()
     sites: tuple[str, ...] = ()
+    limb_bodies: tuple[str, ...] = ()
 
     @property
     def n_actuators(self) -> int:
@@ -98,8 +102,12 @@ class Figure:
 
     @property
     def contact_bodies(self) -> tuple[str, ...]:
-        """Bodies with a contact-force column: base/feet first, then head, then touch bodies."""
-        return tuple(dict.fromkeys((*self.base_bodies, *self.head_bodies, *self.touch_bodies)))
+        """Bodies with a contact-force column: base/feet, head, touch bodies, then limbs."""
+        return tuple(
+            dict.fromkeys(
+                (*self.base_bodies, *self.head_bodies, *self.touch_bodies, *self.limb_bodies)
+            )
+        )
 
     def sensor_index(self, column: str) -> int:
         """Index of the sensor column named ``column`` (e.g. ``"root_x"``)."""
@@ -126,6 +134,7 @@ class Figure:
         neutral: npt.ArrayLike | None = None,
         touch_bodies: Sequence[str] = (),
         sites: Sequence[str] = (),
+        limb_bodies: Sequence[str] = (),
     ) -> Figure:
         """Make a figure from MJCF text with a planar root and position servos.
 
@@ -137,6 +146,8 @@ class Figure:
             neutral: (n_act,) neutral angles, rad; default the joints' ``qpos0``.
             touch_bodies: further bodies whose contact force is sensed.
             sites: sites whose world position is sensed.
+            limb_bodies: bodies whose floor contact means the figure is down
+                (their sensors feel the floor only).
 
         Returns:
             The figure, whose MJCF has a contact sensor per base/head/touch body
@@ -145,7 +156,7 @@ class Figure:
         Raises:
             FigureError: the MJCF does not compile or breaks one of the rules above.
         """
-        contact = tuple(dict.fromkeys((*base_bodies, *head_bodies, *touch_bodies)))
+        contact = tuple(dict.fromkeys((*base_bodies, *head_bodies, *touch_bodies, *limb_bodies)))
         if not base_bodies:
             raise FigureError(f"{name}: name at least one base or foot body")
         model = _compile(xml)
@@ -156,7 +167,10 @@ class Figure:
         if missing:
             raise FigureError(f"{name}: no site named {', '.join(map(repr, missing))}")
         _check_planar_root(model, name)
-        xml = _with_sensors(xml, contact, sites)
+        limbs_only = [
+            b for b in limb_bodies if b not in (*base_bodies, *head_bodies, *touch_bodies)
+        ]
+        xml = _with_sensors(xml, contact, sites, on_floor=limbs_only)
         model = _compile(xml)
         joints, kp, kv = _servos(model, name)
         qpos0 = np.array([model.qpos0[model.joint(j).qposadr[0]] for j in joints])
@@ -185,6 +199,7 @@ class Figure:
             sensor_names=sensor_columns(joints, contact, sites),
             touch_bodies=tuple(touch_bodies),
             sites=tuple(sites),
+            limb_bodies=tuple(limb_bodies),
         )
 
 
@@ -218,10 +233,14 @@ def _check_planar_root(model: mujoco.MjModel, name: str) -> None:
         )
 
 
-def _with_sensors(xml: str, bodies: Sequence[str], sites: Sequence[str]) -> str:
+def _with_sensors(
+    xml: str, bodies: Sequence[str], sites: Sequence[str], on_floor: Sequence[str] = ()
+) -> str:
     """The MJCF with a net-force contact sensor per body and a position sensor per site.
 
-    Sensors already there (by name) are kept.
+    The bodies in ``on_floor`` sense only contact with the world body (the
+    floor), the others contact with anything. Sensors already there (by
+    name) are kept.
     """
     root = ET.fromstring(xml)
     section = root.find("sensor")
@@ -232,6 +251,8 @@ def _with_sensors(xml: str, bodies: Sequence[str], sites: Sequence[str]) -> str:
         sensor = contact_sensor_name(body)
         if sensor not in present:
             attrs = {"name": sensor, "body1": body, "data": "force", "reduce": "netforce"}
+            if body in on_floor:
+                attrs["body2"] = "world"
             ET.SubElement(section, "contact", attrs)
     for site in sites:
         sensor = site_sensor_name(site)

@@ -22,6 +22,10 @@ from sinews.figures.mjcf import Servo, document, fmt, hinge, planar_root
 
 __all__ = ["HumanoidShape", "humanoid", "humanoid_mjcf"]
 
+LIMBS = ("pelvis", "torso", "upper_arm_l", "forearm_l", "upper_arm_r", "forearm_r",
+         "thigh_l", "shin_l", "thigh_r", "shin_r")  # fmt: skip
+"""Everything but the feet and the head: on the floor, the person is down."""
+
 
 @dataclass(frozen=True)
 class Joint:
@@ -182,4 +186,5 @@ def humanoid(shape: HumanoidShape = HumanoidShape(), *, friction: float = 1.0) -
         name="humanoid",
         base_bodies=("foot_l", "foot_r"),
         head_bodies=("head",),
+        limb_bodies=LIMBS,
     )

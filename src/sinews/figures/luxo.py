@@ -85,10 +85,11 @@ def luxo_mjcf(shape: LuxoShape = LuxoShape(), *, friction: float = 1.0) -> str:
 
 
 def luxo(shape: LuxoShape = LuxoShape(), *, friction: float = 1.0) -> Figure:
-    """The Luxo lamp as a `Figure`: base is ``base``, head is ``head``."""
+    """The Luxo lamp as a `Figure`: base is ``base``, head is ``head``, the arms are limbs."""
     return Figure.from_mjcf(
         luxo_mjcf(shape, friction=friction),
         name="luxo",
         base_bodies=("base",),
         head_bodies=("head",),
+        limb_bodies=("arm_lower", "arm_upper"),
     )

@@ -251,6 +251,7 @@ def luxo_limbo(
         base_bodies=lamp.base_bodies,
         head_bodies=lamp.head_bodies,
         touch_bodies=("pole",),
+        limb_bodies=lamp.limb_bodies,
     )
     return Task(
         name="luxo-limbo",
@@ -289,6 +290,7 @@ def humanoid_reach(
         base_bodies=person.base_bodies,
         head_bodies=person.head_bodies,
         sites=("hand_r", "nose"),
+        limb_bodies=person.limb_bodies,
     )
     nose = target == "nose"
     if not nose and (isinstance(target, str) or len(target) != 2):

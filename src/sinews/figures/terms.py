@@ -14,8 +14,10 @@ The terms (`TERMS`), each **higher is better** (penalties are ≤ 0), as
 - ``still``: minus the path length of the tracked point after it first
   arrived, m. "Penalty for excess movement after the goal was met."
 - ``head``: minus the fraction of ticks with any contact on a head body.
-- ``fallen``: minus the fraction of ticks the root is tilted beyond
-  ``max_tilt`` or lower than ``min_height`` ("falling over").
+- ``fallen``: minus the fraction of ticks the figure is down ("falling
+  over"): its root tilted beyond ``max_tilt``, lower than ``min_height``, or
+  any of its limb bodies (a lamp's arms; a person's trunk, arms and legs)
+  touching the floor.
 - ``neutral``: minus the mean |angle − neutral| of the driven joints at the
   end, rad. "Bonus for ending with joints at neutral angles."
 - ``energy``: minus the work of the servos, Σ |τ · q̇| Δt over the ticks, J
@@ -66,6 +68,7 @@ class TaskMeter:
         self._goal_fixed = np.array([0.0 if isinstance(t, str) else float(t) for t in target])
         self._head = _force_columns(figure, figure.head_bodies)
         self._touch = _force_columns(figure, figure.touch_bodies)
+        self._limbs = _force_columns(figure, figure.limb_bodies)
         self._root = index("root_z"), index("root_pitch")
         self._q = [index(f"q_{j}") for j in figure.joints]
         self._dq = [index(f"dq_{j}") for j in figure.joints]
@@ -99,7 +102,8 @@ class TaskMeter:
         self._head_ticks += _touching(sensors, self._head)
         self._touch_ticks += _touching(sensors, self._touch)
         z, pitch = sensors[:, self._root[0]], sensors[:, self._root[1]]
-        self._fallen_ticks += (np.abs(pitch) > self.task.max_tilt) | (z < self.task.min_height)
+        tilted = (np.abs(pitch) > self.task.max_tilt) | (z < self.task.min_height)
+        self._fallen_ticks += tilted | _touching(sensors, self._limbs)
         q, dq = sensors[:, self._q], sensors[:, self._dq]
         self._energy += self._power * (t - self._last_t)  # power held since the last tick
         figure = self.task.figure
