@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import json
+import os
+import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -12,6 +14,7 @@ from PIL import Image
 
 pytest.importorskip("mujoco")
 
+from killed_runs import sinews_command
 from sinews.cli import main
 from sinews.cli.evolve import best_of
 from sinews.control.gp import format_program
@@ -179,3 +182,30 @@ def test_bad_input_is_a_one_line_error_and_stores_nothing(
     assert err.startswith("error: ") and message in err and err.count("\n") == 1
     with RunStore(db) as store:
         assert store.runs() == []
+
+
+def test_reports_rate_every_generation_at_full_weight_and_agree_on_one_best(
+    tmp_path: Path,
+) -> None:
+    """With style phased in, early bests score high on distance alone: the reports say so."""
+    db = str(tmp_path / "r.db")
+    args = ["evolve", "luxo", "--controller", "gp", "--task", "hop", "--population", "12",
+            "--generations", "5", "--seconds", "1", "--seed", "2", "--db", db]  # fmt: skip
+    env = {**os.environ, "COLUMNS": "200"}
+
+    def sinews(*more: str) -> str:
+        done = subprocess.run([*sinews_command(), *more], capture_output=True, text=True, env=env)
+        assert done.returncode == 0, done.stderr
+        return done.stdout
+
+    shown = sinews(*args)
+    assert "'full' rates each generation at full style" in " ".join(shown.split())
+    full_best = float(shown.split("at full style weight")[-1].split()[0])
+    listed = next(
+        line for line in sinews("runs", "list", "--db", db).splitlines() if "│ 1 " in line
+    )
+    assert float(listed.split("│")[6]) == pytest.approx(full_best, abs=1e-3)  # the same best
+    best = sinews("runs", "best", "1", "-o", str(tmp_path / "p.txt"), "--db", db)
+    saved = float(best.split("fitness ")[1].split(")")[0])
+    assert saved == pytest.approx(full_best, abs=1e-3)
+    assert sinews("plot", "1", "-o", str(tmp_path / "f.png"), "--db", db).startswith("wrote")

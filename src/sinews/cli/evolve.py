@@ -24,6 +24,7 @@ from sinews.experiments import dancer_evolution
 from sinews.experiments.evolution import (
     GenerationSummary,
     best_at_full_weight,
+    full_weight_bests,
     full_weight_fitness,
 )
 from sinews.experiments.figure_runs import (
@@ -159,23 +160,26 @@ def print_summary(store: RunStore, run_id: int) -> None:
 
     Runs bred by hand have no fitness: their table lists each generation's picks.
     """
-    if EvolutionConfig.from_dict(store.run(run_id).config).by_hand:
+    config = EvolutionConfig.from_dict(store.run(run_id).config)
+    if config.by_hand:
         _print_picks(store, run_id)
         return
-    stats = generation_stats(store.scores(run_id))
+    scores = store.scores(run_id)
+    stats = generation_stats(scores)
     terms = stats.best_terms if len(stats.best_terms) > 1 else {}  # one term: = best
-    table = Table(
-        title=f"run {run_id}: fitness, and the terms of each generation's best",
-        box=box.SIMPLE_HEAD,
-        collapse_padding=True,
-        show_edge=False,
-    )
-    for column in ("gen", "best", "mean", "fail", *terms):
+    phased = config.fitness.phase_in.full > 0 and len(terms) > 1
+    full = full_weight_bests(scores, config.fitness) if phased and len(scores.fitness) else None
+    title = f"run {run_id}: fitness, and the terms of each generation's best"
+    if full is not None:
+        title += " (style phases in: 'full' rates each generation at full style weight)"
+    table = Table(title=title, box=box.SIMPLE_HEAD, collapse_padding=True, show_edge=False)
+    for column in ("gen", "best", *(("full",) if full is not None else ()), "mean", "fail", *terms):
         table.add_column(column, justify="right", min_width=len(column))
     for k, generation in enumerate(stats.generations):
         table.add_row(
             str(generation),
             _number(stats.best[k]),
+            *((_number(full[k]),) if full is not None else ()),
             _number(stats.mean[k]),
             str(stats.failed[k]),
             *[_number(values[k]) for values in terms.values()],

@@ -26,10 +26,18 @@ from sinews.dancers import DancerGenome
 from sinews.errors import SinewsError
 from sinews.evolve import make_evaluator
 from sinews.experiments import dancer_evolution
+from sinews.experiments.evolution import full_weight_bests, full_weight_fitness
 from sinews.experiments.figure_runs import FigureExperiment, experiment_of
 from sinews.experiments.run_config import EvolutionConfig
 from sinews.limits import MAX_GENERATIONS, MAX_PICTURE_PIXELS, MAX_RUN_ID, MIN_PICTURE_PIXELS
-from sinews.store import Individual, RunStore, code_version, export_run, generation_stats
+from sinews.store import (
+    Individual,
+    RunInfo,
+    RunStore,
+    code_version,
+    export_run,
+    generation_stats,
+)
 
 __all__ = ["register"]
 
@@ -70,7 +78,8 @@ def list_runs(db: Db = None) -> None:
         ):
             table.add_column(column)
         for info in store.runs():
-            by_hand = EvolutionConfig.from_dict(info.config).by_hand
+            config = EvolutionConfig.from_dict(info.config)
+            by_hand = config.by_hand
             song = str(info.config.get("song", ""))
             table.add_row(
                 str(info.id),
@@ -80,11 +89,26 @@ def list_runs(db: Db = None) -> None:
                 if by_hand
                 else f"{info.generations}/{info.config.get('generations', '?')}",
                 str(info.config.get("population", "?")),
-                _number(info.best_fitness),
+                _number(_best_fitness(store, info, config)),
                 song if song.startswith("demo:") else Path(song).name,
                 info.created,
             )
         Console().print(table)
+
+
+def _best_fitness(store: RunStore, info: RunInfo, config: EvolutionConfig) -> float | None:
+    """The fitness of the run's best (`best_of`), rated as `_rated` rates it."""
+    if config.by_hand or info.best_fitness is None:
+        return None
+    return _rated(best_of(store, info.id), config)
+
+
+def _rated(individual: Individual, config: EvolutionConfig) -> float | None:
+    """An individual's fitness at full style weight where style phases in, else as stored."""
+    if config.fitness.phase_in.full == 0 or not individual.terms:
+        return individual.fitness
+    terms, failed = [individual.terms], [individual.failed]
+    return float(full_weight_fitness(terms, failed, config.fitness)[0])
 
 
 @runs_app.command("show")
@@ -109,6 +133,7 @@ def best(run: Run, output: Output, db: Db = None) -> None:
     GP runs a .txt of the program's S-expression."""
     with open_store(db, readonly=True) as store:
         individual = best_of(store, run)
+        config = EvolutionConfig.from_dict(store.run(run).config)
         experiment = experiment_of(store.run(run))
         seed = ""
         if experiment is None:
@@ -124,7 +149,7 @@ def best(run: Run, output: Output, db: Db = None) -> None:
             output.write_text(json.dumps(document, indent=1) + "\n", encoding="utf-8")
         typer.echo(
             f"wrote {output} (individual {individual.id}, generation {individual.generation}, "
-            f"fitness {_number(individual.fitness)}{seed})"
+            f"fitness {_number(_rated(individual, config))}{seed})"
         )
 
 
@@ -330,17 +355,21 @@ def plot(run: Run, output: Output, db: Db = None) -> None:
         stats = generation_stats(store.scores(run))
         if not len(stats.generations):
             raise SinewsError(f"run {run} has no scored generations yet")
-        weights = EvolutionConfig.from_dict(info.config).fitness.weights
-        weighed = {k: v for k, v in stats.best_terms.items() if weights.get(k, 1.0) != 0}
+        spec = EvolutionConfig.from_dict(info.config).fitness
+        weighed = {k: v for k, v in stats.best_terms.items() if spec.weights.get(k, 1.0) != 0}
         terms = weighed if len(weighed) > 1 else {}  # one term: = best; weight 0: not rated
         series = {"best": stats.best, "mean": stats.mean, **terms}
+        marks: dict[str, float] = {}
+        if spec.phase_in.full > 0 and len(weighed) > 1:  # early bests are rated without style
+            series["best at full weight"] = full_weight_bests(store.scores(run), spec)
+            marks = {"style starts": spec.phase_in.start, "style full": spec.phase_in.full}
         song = info.config.get("song", "")
         title = f"run {run}: {info.kind}{f' to {song}' if song else ''}"
         title += " (terms of each best)" if terms else ""
         experiment = experiment_of(info)
         if experiment is not None:
             title += f", seed {info.seed}\n{experiment.fitness_label}"
-        path = plot_fitness(stats.generations, series, output, title)
+        path = plot_fitness(stats.generations, series, output, title, marks=marks)
         store.add_media(run, path, kind=path.suffix.lstrip(".").lower())
     typer.echo(f"wrote {path}")
 

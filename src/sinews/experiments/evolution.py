@@ -30,7 +30,7 @@ import numpy.typing as npt
 
 from sinews.errors import SinewsError
 from sinews.evolve import FitnessSpec, Strategy, individual_seeds, strategy_rng
-from sinews.store import GenerationRecord, Individual, RunStore
+from sinews.store import GenerationRecord, Individual, RunStore, ScoreTable
 
 __all__ = [
     "FloatStrategies",
@@ -42,6 +42,7 @@ __all__ = [
     "advance",
     "best_at_full_weight",
     "continue_run",
+    "full_weight_bests",
     "full_weight_fitness",
     "new_strategy",
     "record_picks",
@@ -376,6 +377,17 @@ def full_weight_fitness(
         dtype=np.float64,
     ).reshape(len(terms), len(spec.names))
     return spec.combine(values, np.asarray(failed, dtype=bool), spec.phase_in.full)
+
+
+def full_weight_bests(table: ScoreTable, spec: FitnessSpec) -> npt.NDArray[np.float64]:
+    """(G,) each scored generation's best fitness at full style weight, generations ascending.
+
+    The stored fitness of an early generation is at that generation's (lower)
+    style weight; this is the same generation rated as the last ones are.
+    """
+    full = full_weight_fitness(table.terms, table.failed, spec)
+    generations = np.unique(table.generation)
+    return np.array([full[table.generation == g].max() for g in generations], dtype=np.float64)
 
 
 def best_at_full_weight(store: RunStore, run_id: int, spec: FitnessSpec) -> Individual:

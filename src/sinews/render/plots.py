@@ -14,7 +14,7 @@ from sinews.render.errors import RenderError
 
 __all__ = ["plot_fitness"]
 
-_HEADLINE = ("best", "mean", "median", "worst")
+_HEADLINE = ("best", "mean", "median", "worst", "best at full weight")
 
 
 def plot_fitness(
@@ -22,6 +22,8 @@ def plot_fitness(
     series: Mapping[str, npt.ArrayLike],
     path: str | os.PathLike[str],
     title: str = "",
+    *,
+    marks: Mapping[str, float] | None = None,
 ) -> Path:
     """Plot fitness curves per generation to a PNG, SVG or PDF and return its path.
 
@@ -34,6 +36,8 @@ def plot_fitness(
         series: name → (G,) values.
         path: ``.png``, ``.svg`` or ``.pdf`` file.
         title: figure title.
+        marks: label → generation, drawn as dotted vertical lines on every
+            panel (e.g. where style starts and where it is full).
     """
     suffix = suffix_of(path, (".png", ".svg", ".pdf"))
     x = np.asarray(generations, dtype=np.float64).reshape(-1)
@@ -56,6 +60,14 @@ def plot_fitness(
     for ax, (group, label) in zip(axes, panels, strict=True):
         for name, values in group.items():
             ax.plot(x, values, label=name, linewidth=2.0 if group is headline else 1.2)
+        for k, (name, generation) in enumerate((marks or {}).items()):
+            ax.axvline(generation, color="0.45", linestyle=":", linewidth=1.0)
+            if ax is axes[0]:
+                where = (generation, 1.0 - 0.08 * (k + 1))
+                ax.annotate(
+                    name, where, xycoords=("data", "axes fraction"), fontsize="x-small",
+                    color="0.35", xytext=(3, 0), textcoords="offset points",
+                )  # fmt: skip
         ax.set_ylabel(label)
         ax.grid(alpha=0.3)
         ax.legend(fontsize="small", loc="best")
