@@ -209,3 +209,36 @@ def test_reports_rate_every_generation_at_full_weight_and_agree_on_one_best(
     saved = float(best.split("fitness ")[1].split(")")[0])
     assert saved == pytest.approx(full_best, abs=1e-3)
     assert sinews("plot", "1", "-o", str(tmp_path / "f.png"), "--db", db).startswith("wrote")
+
+
+def test_a_group_of_runs_and_a_run_that_stops_when_adequate(tmp_path: Path) -> None:
+    db = str(tmp_path / "r.db")
+    args = ["evolve", "luxo", "--controller", "gp", "--task", "hop", "--target", "0.5",
+            "--population", "12", "--generations", "6", "--seconds", "1", "--seed", "3",
+            "--runs", "2", "--until", "1.0", "--db", db]  # fmt: skip
+    done = subprocess.run([*sinews_command(), *args], capture_output=True, text=True,
+                          env={**os.environ, "COLUMNS": "200"})  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    assert "2 runs of one setting" in done.stdout and "the group's best: run " in done.stdout
+    with RunStore(db) as store:
+        infos = store.runs()
+    assert [i.seed for i in infos] == [3, 4]
+    assert all(i.config["group"] == [1, 2] and i.config["until"] == 1.0 for i in infos)
+    # a lamp that stays upright is within 1 m of an X 0.5 m away: adequate in generation 0
+    assert all(i.status == "finished" and i.generations == 1 for i in infos)
+
+
+@pytest.mark.parametrize(
+    ("extra", "message"),
+    [
+        (["--runs", "0"], "--runs"),
+        (["--target", "5"], "0.5 to 2 m"),
+        (["--until", "-1"], "until must be between"),
+        (["--config", "bad.toml"], "unknown setting 'bogus'"),
+    ],
+)
+def test_bad_group_and_termination_settings(tmp_path: Path, extra: list[str], message: str) -> None:
+    (tmp_path / "bad.toml").write_text("population = 10\nbogus = 3\n")
+    args = ["evolve", "luxo", "--controller", "gp", "--task", "hop", *extra, "--db", "r.db"]
+    done = subprocess.run([*sinews_command(), *args], capture_output=True, text=True, cwd=tmp_path)
+    assert done.returncode == 2 and done.stderr.count("\n") == 1 and message in done.stderr

@@ -12,6 +12,7 @@ import time
 from pathlib import Path
 from typing import Annotated
 
+import numpy as np
 import typer
 from rich import box
 from rich.console import Console
@@ -69,6 +70,10 @@ Workers = Annotated[
 ]
 
 
+MAX_GROUP_RUNS = 100
+"""Most independent runs one ``--runs`` makes."""
+
+
 def open_store(db: Path | None, *, readonly: bool = False) -> RunStore:
     """The run store at ``db`` or the default location (``readonly``: create nothing)."""
     return RunStore(db, readonly=readonly)
@@ -91,6 +96,31 @@ def best_of(store: RunStore, run_id: int) -> Individual:
     if experiment_of(info) is None:
         return store.best(run_id)
     return best_at_full_weight(store, run_id, EvolutionConfig.from_dict(info.config).fitness)
+
+
+def print_group(store: RunStore, group: list[int]) -> None:
+    """One row per run of a group (seed, generations used, its best and the best's terms),
+    then the group's best."""
+    bests = [best_of(store, run_id) for run_id in group]
+    infos = [store.run(run_id) for run_id in group]
+    spec = EvolutionConfig.from_dict(infos[0].config).fitness
+    rated = full_weight_fitness([b.terms or {} for b in bests], [b.failed for b in bests], spec)
+    names = [n for n in spec.names if spec.weights.get(n, 1.0) != 0]
+    table = Table(title=f"{len(group)} runs of one setting: each run's best",
+                  box=box.SIMPLE_HEAD, show_edge=False)  # fmt: skip
+    for column in ("run", "seed", "generations", "best", *names):
+        table.add_column(column, justify="right")
+    for info, best, value in zip(infos, bests, rated, strict=True):
+        terms = best.terms or {}
+        used = f"{info.generations}/{info.config['generations']}"
+        table.add_row(str(info.id), str(info.seed), used, _number(float(value)),
+                      *[_number(terms.get(n)) for n in names])  # fmt: skip
+    console = Console()
+    console.print(table)
+    k = int(np.argmax(rated))
+    console.print(f"the group's best: run {group[k]}, individual {bests[k].id} "
+                  f"(fitness {_number(float(rated[k]))}); render it with: "
+                  f"sinews render {group[k]} --best -o best.mp4", highlight=False)  # fmt: skip
 
 
 def _print_picks(store: RunStore, run_id: int) -> None:
@@ -332,6 +362,22 @@ def _figure_command(figure: str) -> None:
         config: Annotated[
             Path | None, typer.Option("--config", help="Run file (TOML); options override it.")
         ] = None,
+        until: Annotated[
+            float | None,
+            typer.Option(
+                help="GP: stop at the first generation with a program this close to the goal "
+                "(m) and clean (no head contact, never down, the bar untouched)."
+            ),
+        ] = None,
+        runs: Annotated[
+            int,
+            typer.Option(
+                min=1,
+                max=MAX_GROUP_RUNS,
+                help="Independent runs of this setting (seeds SEED, SEED+1, ...), stored as "
+                "a group; a table of them and the group's best follow.",
+            ),
+        ] = 1,
         executor: Executor = None,
         scheduler: Scheduler = None,
         workers: Workers = None,
@@ -349,18 +395,32 @@ def _figure_command(figure: str) -> None:
             "masses": masses,
             "strategy": strategy,
             "keep": None if keep is None else read_keep_file(keep),
+            "until": until,
         }
         started = time.perf_counter()
         file_values = load_toml(config) if config is not None else {}
+        first_seed = seed if seed is not None else int(file_values.get("seed", 0) or 0)
         with open_store(db) as store:
-            run_id = experiment.create_run(
-                store, figure=figure, file_values=file_values, options=options
-            )
-            typer.echo(f"run {run_id} in {store.path}", err=True)
+            group = []
+            for k in range(runs):  # every run made first: a bad setting fails before any runs
+                seeded = {**options, "seed": first_seed + k} if runs > 1 else options
+                group.append(
+                    experiment.create_run(
+                        store, figure=figure, file_values=file_values, options=seeded
+                    )
+                )
+            if runs > 1:
+                for run_id in group:
+                    info = store.run(run_id)
+                    store.update_config(run_id, {**info.config, "group": group})
             with make_evaluator(
                 executor or "serial", workers=workers, scheduler=scheduler
             ) as evaluator:
-                run_with_progress(store, run_id, evaluator=evaluator)
+                for run_id in group:
+                    typer.echo(f"run {run_id} in {store.path}", err=True)
+                    run_with_progress(store, run_id, evaluator=evaluator)
+            if runs > 1:
+                print_group(store, group)
         typer.echo(f"{time.perf_counter() - started:.1f} s", err=True)
 
     evolve_figure.__doc__ = (

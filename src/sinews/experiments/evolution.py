@@ -292,6 +292,7 @@ def continue_run(
     generations: int | None = None,
     picks: Callable[[int], Sequence[int]] | None = None,
     on_generation: Callable[[GenerationSummary], None] | None = None,
+    stop: Callable[[], bool] | None = None,
 ) -> None:
     """Run generations until the run has ``config["generations"]``, then mark it finished.
 
@@ -312,6 +313,9 @@ def continue_run(
             marked (told with g's fitness when breeding g + 1), for strategies
             that take picks alongside fitness.
         on_generation: called after each stored generation.
+        stop: asked after each stored generation (and before the first new one
+            of a resumed run); True ends the run there, finished (a termination
+            criterion such as "a program is adequate").
 
     Raises:
         SinewsError: ``generations`` is fewer than the run already has.
@@ -328,6 +332,8 @@ def continue_run(
         while (last := store.last_generation(run_id)) + 1 < target:
             if last >= 0 and "fitness" not in strategy.takes:
                 return
+            if last >= 0 and stop is not None and stop():
+                break
             kept = list(picks(last)) if picks is not None and last >= 0 else None
             summary = advance(
                 store, run_id, scorer=scorer, spec=spec, strategy=strategy, picks=kept

@@ -25,10 +25,20 @@ from sinews.experiments.gp_figures import measure_programs
 from sinews.experiments.gp_scoring import GPRunSettings, GPScorer, GPStrategies
 from sinews.experiments.run_config import ConfigError, EvolutionConfig, build_config
 from sinews.figures.tasks import Task, make_task
+from sinews.limits import check_number
 from sinews.render.figure_scene import TaskScene
 from sinews.store import Individual, RunInfo, RunStore
 
-__all__ = ["CONTROLLER", "DEFAULTS", "EXPERIMENT", "TASKS", "GPExperiment", "scene_of"]
+__all__ = [
+    "CLEAN_TERMS",
+    "CONTROLLER",
+    "DEFAULTS",
+    "EXPERIMENT",
+    "TASKS",
+    "GPExperiment",
+    "adequate",
+    "scene_of",
+]
 
 CONTROLLER = "gp"
 TASKS: dict[str, dict[str, tuple[str, dict[str, Any]]]] = {
@@ -50,11 +60,27 @@ DEFAULTS: dict[str, Any] = {
     "physics_hz": 1000,
     "functions": list(BASIC_FUNCTIONS),
     "erc_range": [-1.0, 1.0],
+    "until": None,
 }
 """The paper's run (250 programs, 50 generations) unless told otherwise; the task's
 terms make the fitness, and style is phased in from a tenth of the run to its end."""
 _KIND_KEYS = ("task", "target", "pole_height", "seconds", "control_hz", "physics_hz",
-              "functions", "erc_range")  # fmt: skip
+              "functions", "erc_range", "until")  # fmt: skip
+CLEAN_TERMS = ("head", "fallen", "touch")
+"""Style terms an adequate program must not lose anything on."""
+
+
+def adequate(store: RunStore, run_id: int, within: float) -> bool:
+    """Whether the run's last generation holds a program within ``within`` m of the goal
+    that loses nothing on the clean terms (`CLEAN_TERMS`)."""
+    last = store.last_generation(run_id)
+    for individual in store.individuals(run_id, last) if last >= 0 else []:
+        terms = individual.terms or {}
+        clean = all((terms.get(name) or 0.0) == 0.0 for name in CLEAN_TERMS)
+        distance = terms.get("distance")
+        if clean and not individual.failed and distance is not None and distance >= -within:
+            return True
+    return False
 
 
 class GPExperiment:
@@ -93,13 +119,16 @@ class GPExperiment:
         )  # fmt: skip
         if config.fitness.names != tuple(task.weights):
             raise ConfigError(f"GP runs are rated by the task's terms: {', '.join(task.weights)}")
+        until = extra.pop("until", None)
+        if until is not None:
+            until = check_number("until", until, 1e-4, 1.0)
         settings = GPRunSettings.from_values(
             {**extra, "task": task.name, "task_options": task.params, "seconds": task.seconds}
         )
         GPStrategies(settings).new(config.to_dict(), config.seed)  # validate
         return store.create_run(
             f"{CONTROLLER}-{task.figure.name}",
-            config={**config.to_dict(), **settings.to_dict()},
+            config={**config.to_dict(), **settings.to_dict(), "until": until},
             seed=config.seed,
             genome_codec=GENOME_CODEC,
         )
@@ -113,14 +142,21 @@ class GPExperiment:
         generations: int | None = None,
         on_generation: Callable[[GenerationSummary], None] | None = None,
     ) -> None:
-        """Run, resume or extend (to ``generations``) a GP run."""
+        """Run, resume or extend (to ``generations``) a GP run.
+
+        A run made with ``until`` (metres) stops at the first generation that
+        holds an adequate program: within ``until`` of the goal and clean (no
+        head contact, never down, the bar untouched).
+        """
         info = store.run(run_id)
         settings = _settings(info)
+        until = info.config.get("until")
         continue_run(
             store, run_id, scorer=GPScorer(settings, evaluator),
             spec=EvolutionConfig.from_dict(info.config).fitness,
             strategies=GPStrategies(settings), generations=generations,
             on_generation=on_generation,
+            stop=None if until is None else lambda: adequate(store, run_id, float(until)),
         )  # fmt: skip
 
     def pick(
