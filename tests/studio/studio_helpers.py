@@ -6,9 +6,15 @@ import queue
 import signal
 import subprocess
 import threading
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
+from starlette.testclient import TestClient
+
 from killed_runs import sinews_command
+from sinews.studio.app import create_app
+from sinews.studio.service import StudioSettings, Worker
 
 CHROMIUM = Path("/usr/bin/chromium")
 CHROMIUM_ARGS = [
@@ -17,6 +23,7 @@ CHROMIUM_ARGS = [
 ]  # fmt: skip
 DATA = Path(__file__).resolve().parents[1] / "data"
 START_TIMEOUT = 90.0
+HOME = "http://127.0.0.1:8765"
 
 
 class StudioServer:
@@ -71,3 +78,12 @@ class StudioServer:
                 self.process.wait(timeout=30)
             except subprocess.TimeoutExpired:
                 self.kill()
+
+
+@contextmanager
+def in_process_studio(db: Path) -> Iterator[TestClient]:
+    """A started studio on ``db`` behind Starlette's test client (no server, no browser)."""
+    worker = Worker(StudioSettings(db=db))
+    worker.call(lambda s: s.start())
+    with TestClient(create_app(worker), base_url=HOME) as client:
+        yield client

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from starlette.testclient import TestClient
 from starlette.websockets import WebSocketDisconnect
-from studio_helpers import DATA
+from studio_helpers import DATA, in_process_studio
 from test_studio_runs import decode_pack
 
 from sinews.studio.app import create_app
@@ -26,9 +26,7 @@ LIVE = "ws://127.0.0.1:8765/api/live"
 
 @pytest.fixture(scope="module")
 def client(tmp_path_factory: pytest.TempPathFactory, studio_home: None) -> Iterator[TestClient]:
-    worker = Worker(StudioSettings(db=tmp_path_factory.mktemp("api") / "studio.db"))
-    worker.call(lambda s: s.start())
-    with TestClient(create_app(worker), base_url=HOME) as client:
+    with in_process_studio(tmp_path_factory.mktemp("api") / "studio.db") as client:
         yield client
 
 

@@ -15,9 +15,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from starlette.testclient import TestClient
-
-from sinews.studio.app import create_app
-from sinews.studio.service import StudioSettings, Worker
+from studio_helpers import in_process_studio
 
 HOME = "http://127.0.0.1:8765"
 FUZZ = settings(
@@ -49,9 +47,7 @@ bodies = st.one_of(
 
 @pytest.fixture(scope="module")
 def client(tmp_path_factory: pytest.TempPathFactory, studio_home: None) -> Iterator[TestClient]:
-    worker = Worker(StudioSettings(db=tmp_path_factory.mktemp("fuzz") / "studio.db"))
-    worker.call(lambda s: s.start())
-    with TestClient(create_app(worker), base_url=HOME) as client:
+    with in_process_studio(tmp_path_factory.mktemp("fuzz") / "studio.db") as client:
         yield client
 
 
