@@ -257,3 +257,18 @@ def test_checkpoint_of_another_strategy_is_refused() -> None:
     strategy = interactive()
     with pytest.raises(StrategyError, match="not a GeneticAlgorithm"):
         GeneticAlgorithm.from_bytes(strategy.to_bytes())
+
+
+def test_every_strategy_is_known_whatever_was_imported_first() -> None:
+    """A fresh interpreter that imports only the base module still knows the paper's GA."""
+    import subprocess
+    import sys
+
+    code = (
+        "import numpy as np; from sinews.evolve.strategy import Strategy; "
+        "s = Strategy.create('alton', population_size=10, genome_size=5, "
+        "rng=np.random.default_rng(0)); print(s.name)"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "alton"

@@ -17,6 +17,7 @@ Example:
 
 from __future__ import annotations
 
+from sinews.evolve.alton import AltonGA, SpringNetEncoding
 from sinews.evolve.errors import StrategyError
 from sinews.evolve.evaluate import (
     EVALUATORS,
@@ -45,6 +46,7 @@ __all__ = [
     "CROSSOVERS",
     "EVALUATORS",
     "WORST_FITNESS",
+    "AltonGA",
     "DaskEvaluator",
     "Evaluator",
     "FitnessError",
@@ -55,6 +57,7 @@ __all__ = [
     "PhaseIn",
     "ProcessEvaluator",
     "SerialEvaluator",
+    "SpringNetEncoding",
     "Strategy",
     "StrategyError",
     "Variation",
