@@ -1,0 +1,38 @@
+"""The one place the golden test reaches into the library: replay a run's best to positions."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import numpy.typing as npt
+
+from sinews.cli.evolve import best_of
+from sinews.experiments import dancer_evolution
+from sinews.experiments.figure_runs import experiment_of
+from sinews.store import RunStore
+
+
+def replay_positions(store: RunStore, run_id: int) -> npt.NDArray[np.floating]:
+    """(T, ...) the replayed motion of the run's best: dancer node positions or figure qpos."""
+    best = best_of(store, run_id)
+    experiment = experiment_of(store.run(run_id))
+    if experiment is None:
+        trajectory, _ = dancer_evolution.simulate_individual(store, best)
+        return trajectory.positions
+    (replay,) = experiment.replay(store, [best])
+    assert replay.trajectory.qpos is not None
+    return replay.trajectory.qpos
+
+
+def studio_session(store: RunStore, songs: Path) -> list[int]:
+    """A scripted studio session; returns the runs it made (the first run, then its branch)."""
+    from sinews.studio.runs import StudioRuns
+    from sinews.studio.songs import SongLibrary
+
+    runs = StudioRuns(store, SongLibrary(songs), population=12)
+    first = runs.create(runs.songs.demo(), seed=4)
+    runs.breed(first, 0, [3, 5], mutation=0.1)
+    runs.breed(first, 1, [1], mutation=0.25)
+    branch, _ = runs.breed(first, 1, [0, 7], mutation=0.05)
+    return [first, branch]
