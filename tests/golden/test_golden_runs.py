@@ -18,10 +18,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
-from sinews.store import RunStore
 from golden_replays import replay_positions
+
 from killed_runs import sinews_command
+from sinews.store import RunStore
 
 GOLDEN = Path(__file__).with_name("golden_runs.json")
 CASES: dict[str, list[str]] = {
@@ -41,6 +41,12 @@ def _digest(*arrays: np.ndarray) -> str:
         hasher.update(f"{array.dtype.str}{array.shape}".encode())
         hasher.update(array.tobytes())
     return hasher.hexdigest()[:32]
+
+
+def _private_env(tmp_path: Path) -> dict[str, str]:
+    """This environment with XDG data and cache folders under ``tmp_path``."""
+    return {**os.environ, "XDG_DATA_HOME": str(tmp_path / "data"),
+            "XDG_CACHE_HOME": str(tmp_path / "cache")}  # fmt: skip
 
 
 def _exact(value: object) -> list[str]:
@@ -73,8 +79,7 @@ def test_a_tiny_run_of_every_kind_matches_its_golden_hashes(kind: str, tmp_path:
         capture_output=True,
         text=True,
         timeout=600,
-        env={**os.environ, "XDG_DATA_HOME": str(tmp_path / "data"),
-             "XDG_CACHE_HOME": str(tmp_path / "cache")},  # fmt: skip
+        env=_private_env(tmp_path),
     )
     assert done.returncode == 0, done.stderr
     got = dict(zip(("stored", "replayed"), _stored(db), strict=True))
@@ -97,7 +102,8 @@ def test_a_studio_session_matches_its_golden_hash(
     with RunStore(tmp_path / "studio.db") as store:
         for run_id in studio_session(store, tmp_path / "songs"):
             people = store.individuals(run_id)
-            text = json.dumps([[p.genome, p.parents, p.picked, p.seed] for p in people], default=_exact)
+            rows = [[p.genome, p.parents, p.picked, p.seed] for p in people]
+            text = json.dumps(rows, default=_exact)
             hashes.append(_digest(np.frombuffer(text.encode(), dtype=np.uint8)))
     got = {"stored": ",".join(hashes)}
     golden = json.loads(GOLDEN.read_text())
