@@ -7,15 +7,15 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
-from sinews.cli.evolve import best_of
 from sinews.experiments import dancer_evolution
 from sinews.experiments.figure_runs import experiment_of
 from sinews.store import RunStore
 
 
 def replay_positions(store: RunStore, run_id: int) -> npt.NDArray[np.floating]:
-    """(T, ...) the replayed motion of the run's best: dancer node positions or figure qpos."""
-    best = best_of(store, run_id)
+    """(T, ...) the replayed motion of individual 1 of the run's last generation: dancer
+    node positions or figure qpos (a fixed individual, whatever "best" means)."""
+    best = store.individuals(run_id, store.last_generation(run_id))[1]
     experiment = experiment_of(store.run(run_id))
     if experiment is None:
         trajectory, _ = dancer_evolution.simulate_individual(store, best)
