@@ -12,7 +12,7 @@ import pytest
 from sinews.dancers import DancerGenome
 from sinews.errors import SinewsError
 from sinews.evolve import chunk_slices, make_evaluator
-from sinews.experiments.dancer_evolution import create_dancer_run, dancer_config, run_dancers
+from sinews.experiments.dancers.run import create_dancer_run, dancer_config, run_dancers
 from sinews.store import RunStore
 
 SONG = str(Path(__file__).resolve().parents[1] / "data" / "loop_mika.flac")

@@ -13,8 +13,8 @@ import pytest
 from sinews.dancers import DancerGenome
 from sinews.errors import SinewsError
 from sinews.evolve import SerialEvaluator
-from sinews.experiments import dancer_fitness
-from sinews.experiments.dancer_evolution import (
+from sinews.experiments.dancers import score as dancer_fitness
+from sinews.experiments.dancers.run import (
     create_dancer_run,
     dancer_config,
     pick_dancers,
@@ -23,7 +23,7 @@ from sinews.experiments.dancer_evolution import (
     simulate_individual,
     song_path,
 )
-from sinews.experiments.dancer_fitness import beat_align
+from sinews.experiments.dancers.score import beat_align
 from sinews.experiments.evolution import FloatStrategies, record_picks
 from sinews.experiments.run_config import EvolutionConfig, load_toml
 from sinews.store import RunStore, generation_stats

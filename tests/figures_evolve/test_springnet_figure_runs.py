@@ -15,9 +15,9 @@ pytest.importorskip("mujoco")
 from sinews.cli import main
 from sinews.errors import SinewsError
 from sinews.evolve import ProcessEvaluator, SerialEvaluator
-from sinews.experiments.figure_runs import experiment_of, figure_experiment, parse_keep
-from sinews.experiments.springnet_figures import EXPERIMENT
-from sinews.experiments.springnet_fitness import SpringNetSettings
+from sinews.experiments.figures import experiment_of, figure_experiment, parse_keep
+from sinews.experiments.springnet.run import EXPERIMENT
+from sinews.experiments.springnet.score import SpringNetSettings
 from sinews.store import RunStore
 
 TINY = {"population": 10, "generations": 3, "seconds": 0.5, "seed": 3}

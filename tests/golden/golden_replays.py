@@ -7,8 +7,8 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
-from sinews.experiments import dancer_evolution
-from sinews.experiments.figure_runs import experiment_of
+from sinews.experiments.dancers import run as dancer_evolution
+from sinews.experiments.figures import experiment_of
 from sinews.store import RunStore
 
 

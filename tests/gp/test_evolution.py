@@ -13,9 +13,9 @@ pytest.importorskip("mujoco")
 
 from sinews.evolve import SerialEvaluator
 from sinews.experiments.evolution import GenerationSummary
-from sinews.experiments.gp_figures import measure_programs
-from sinews.experiments.gp_runs import EXPERIMENT
-from sinews.experiments.gp_scoring import GPRunSettings
+from sinews.experiments.gp.run import EXPERIMENT
+from sinews.experiments.gp.score import GPRunSettings
+from sinews.experiments.gp.simulate import measure_programs
 from sinews.experiments.run_config import EvolutionConfig
 from sinews.store import RunStore
 

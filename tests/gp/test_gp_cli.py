@@ -18,8 +18,8 @@ from killed_runs import sinews_command
 from sinews.cli import main
 from sinews.cli.evolve import best_of
 from sinews.control.gp import format_program
-from sinews.experiments.gp_runs import EXPERIMENT
-from sinews.experiments.gp_scoring import GPRunSettings
+from sinews.experiments.gp.run import EXPERIMENT
+from sinews.experiments.gp.score import GPRunSettings
 from sinews.figures import luxo
 from sinews.figures.tasks import standing_height
 from sinews.render import FigureGeometry, FigurePainter, TaskScene

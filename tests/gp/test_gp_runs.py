@@ -16,7 +16,7 @@ pytest.importorskip("mujoco")
 from sinews.cli import main
 from sinews.evolve import SerialEvaluator
 from sinews.experiments.evolution import GenerationSummary
-from sinews.experiments.gp_runs import EXPERIMENT
+from sinews.experiments.gp.run import EXPERIMENT
 from sinews.store import RunStore
 
 OPTIONS: dict[str, Any] = {"task": "hop", "target": "1.5", "population": 8, "generations": 8,

@@ -17,7 +17,7 @@ from pathlib import Path
 
 from sinews.benchmarks._measure import Measurement
 from sinews.evolve import Evaluator, make_evaluator
-from sinews.experiments.dancer_evolution import create_dancer_run, dancer_config, run_dancers
+from sinews.experiments.dancers.run import create_dancer_run, dancer_config, run_dancers
 from sinews.experiments.evolution import GenerationSummary
 from sinews.music.demo import write_demo
 from sinews.store import RunStore

@@ -31,8 +31,8 @@ import numpy as np
 from sinews.benchmarks._measure import Measurement, best_time
 from sinews.control.springnet import SpringNetController, SpringNetGenome
 from sinews.evolve import SerialEvaluator
-from sinews.experiments.springnet_figures import EXPERIMENT
-from sinews.experiments.springnet_fitness import SpringNetSettings, simulate
+from sinews.experiments.springnet.run import EXPERIMENT
+from sinews.experiments.springnet.score import SpringNetSettings, simulate
 from sinews.figures import Figure, humanoid, luxo, rollout, snake
 from sinews.figures._mujoco import require_mujoco
 from sinews.store import RunStore

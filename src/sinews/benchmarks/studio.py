@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from sinews.benchmarks._measure import Measurement, best_time
-from sinews.experiments.dancer_evolution import pick_dancers
+from sinews.experiments.dancers.run import pick_dancers
 from sinews.music import demo_song, save_wav
 from sinews.store import RunStore
 from sinews.studio.motion import Motion

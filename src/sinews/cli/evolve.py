@@ -1,7 +1,7 @@
 """``sinews evolve dancers`` and ``sinews evolve FIGURE``: automatic runs with a progress bar.
 
 ``sinews evolve snake|luxo|humanoid --controller KIND`` runs the controller
-kind's experiment (`sinews.experiments.figure_runs.FIGURE_EXPERIMENTS`): spring
+kind's experiment (`sinews.experiments.figures.FIGURE_EXPERIMENTS`): spring
 nets, or GP programs for a task (``--task hop|limbo|reach|nose``); a new kind
 needs no new command.
 """
@@ -21,14 +21,14 @@ from rich.table import Table
 
 from sinews.errors import SinewsError
 from sinews.evolve import EVALUATORS, Evaluator, make_evaluator
-from sinews.experiments import dancer_evolution
+from sinews.experiments.dancers import run as dancer_evolution
 from sinews.experiments.evolution import (
     GenerationSummary,
     best_at_full_weight,
     full_weight_bests,
     full_weight_fitness,
 )
-from sinews.experiments.figure_runs import (
+from sinews.experiments.figures import (
     FIGURE_EXPERIMENTS,
     FIGURES,
     experiment_of,

@@ -25,9 +25,9 @@ from sinews.cli.progress import frame_progress
 from sinews.dancers import DancerGenome
 from sinews.errors import SinewsError
 from sinews.evolve import make_evaluator
-from sinews.experiments import dancer_evolution
+from sinews.experiments.dancers import run as dancer_evolution
 from sinews.experiments.evolution import full_weight_bests, full_weight_fitness
-from sinews.experiments.figure_runs import FigureExperiment, experiment_of
+from sinews.experiments.figures import FigureExperiment, experiment_of
 from sinews.experiments.run_config import EvolutionConfig
 from sinews.limits import MAX_GENERATIONS, MAX_PICTURE_PIXELS, MAX_RUN_ID, MIN_PICTURE_PIXELS
 from sinews.store import (

@@ -10,10 +10,10 @@ exact, a run killed at any moment and resumed gives bit-identical genomes
 and fitness to one that never stopped.
 
 The kind-specific parts are a `Scorer`, which turns a population into
-fitness terms (e.g. `sinews.experiments.dancer_evolution`), and a
+fitness terms (e.g. `sinews.experiments.dancers.run`), and a
 `StrategyKind`, which makes the run's strategy fresh or from a checkpoint:
 `FloatStrategies` for the float-vector strategies of `sinews.evolve`, and one
-for GP programs (`sinews.experiments.gp_runs`). Any strategy with the
+for GP programs (`sinews.experiments.gp.run`). Any strategy with the
 `LoopStrategy` members fits; what it is told comes from its ``takes``.
 """
 

@@ -20,7 +20,7 @@ import numpy as np
 
 from sinews.dancers import DancerGenome, develop
 from sinews.evolve import Strategy
-from sinews.experiments.dancers import dance
+from sinews.experiments.dancers.simulate import dance
 from sinews.music import MusicFeatures
 from sinews.store import Individual
 from sinews.studio.pack import MILLIMETRES, encode_pack, millimetres

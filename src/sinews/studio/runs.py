@@ -30,7 +30,7 @@ import numpy.typing as npt
 
 from sinews.dancers import DancerGenome
 from sinews.errors import SinewsError
-from sinews.experiments.dancer_evolution import (
+from sinews.experiments.dancers.run import (
     KIND,
     create_dancer_run,
     dancer_config,

@@ -6,7 +6,7 @@ limbo (``limbo``), the humanoid touching a point (``reach``) or its nose
 (``nose``) — with `GPStrategy` through the generic resumable loop: by default
 the paper's 250 programs × 50 generations, 90 % crossover and 10 %
 reproduction, style phased in from generation 5 to the last. Settings,
-strategy and scoring are in `sinews.experiments.gp_scoring`; this module is
+strategy and scoring are in `sinews.experiments.gp.score`; this module is
 start, run or resume, replay with the task's scene, and what the CLI shows
 of a program (its S-expression).
 """
@@ -20,9 +20,9 @@ from sinews.control.gp import BASIC_FUNCTIONS, GENOME_CODEC
 from sinews.errors import SinewsError
 from sinews.evolve import Evaluator
 from sinews.experiments.evolution import GenerationSummary, continue_run
-from sinews.experiments.figure_runs import FigureExperiment, Replay, check_options
-from sinews.experiments.gp_figures import measure_programs
-from sinews.experiments.gp_scoring import GPRunSettings, GPScorer, GPStrategies
+from sinews.experiments.figures import FigureExperiment, Replay, check_options
+from sinews.experiments.gp.score import GPRunSettings, GPScorer, GPStrategies
+from sinews.experiments.gp.simulate import measure_programs
 from sinews.experiments.run_config import ConfigError, EvolutionConfig, build_config
 from sinews.figures.tasks import Task, make_task
 from sinews.limits import check_number
@@ -220,7 +220,7 @@ class GPExperiment:
 
 
 EXPERIMENT: FigureExperiment = GPExperiment()
-"""The GP experiment (registered in `sinews.experiments.figure_runs`)."""
+"""The GP experiment (registered in `sinews.experiments.figures`)."""
 
 
 def default_phase_in(generations: int) -> dict[str, int]:

@@ -4,7 +4,7 @@
 (MuJoCo at 1 kHz, the programs evaluated at 100 Hz) and measures the task's
 fitness terms (**higher is better**: the paper's lower-is-better rating,
 negated; a failed simulation is flagged). A stored run's loop
-(`sinews.experiments.gp_runs`) combines the terms with its phased-in weights,
+(`sinews.experiments.gp.run`) combines the terms with its phased-in weights,
 breeds and stores each generation.
 """
 

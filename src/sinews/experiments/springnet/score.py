@@ -27,7 +27,7 @@ from sinews.errors import SinewsError
 from sinews.evolve import Evaluator, FitnessSpec, SerialEvaluator
 from sinews.evolve.alton import SpringNetEncoding
 from sinews.experiments.evolution import Scores
-from sinews.experiments.figure_runs import FIGURES, distance_travelled, make_figure
+from sinews.experiments.figures import FIGURES, distance_travelled, make_figure
 from sinews.experiments.score_memory import ChunkContext, ScoreMemory, score_in_chunks
 from sinews.figures import Figure, RolloutResult, rollout
 from sinews.limits import MAX_MASSES, check_whole

@@ -24,7 +24,7 @@ import numpy as np
 import numpy.typing as npt
 
 from sinews.dancers import DancerGenome
-from sinews.experiments.dancers import dance
+from sinews.experiments.dancers.simulate import dance
 from sinews.music.beat_align import beat_align_score
 from sinews.music.features import MusicFeatures
 from sinews.trajectory import Trajectory

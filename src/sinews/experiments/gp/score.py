@@ -7,7 +7,7 @@ length, the physics and control rates, the function set and the range of the
 ephemeral random constants. Programs are stored as S-expressions (codec
 ``gp-sexpr/1``); the scorer parses them with the run's primitive set, so what
 was scored is exactly what was stored. Simulation and rating are
-`sinews.experiments.gp_figures`' (`measure_programs`); the loop combines the
+`sinews.experiments.gp.simulate`' (`measure_programs`); the loop combines the
 terms with the phased-in weights.
 """
 
@@ -26,7 +26,7 @@ from sinews.errors import SinewsError
 from sinews.evolve import Evaluator, SerialEvaluator, StrategyError, strategy_rng
 from sinews.evolve.gp import GPStrategy, GPVariation
 from sinews.experiments.evolution import Scores
-from sinews.experiments.gp_figures import GPSettings, measure_programs, primitive_set
+from sinews.experiments.gp.simulate import GPSettings, measure_programs, primitive_set
 from sinews.experiments.score_memory import ChunkContext, ScoreMemory, score_in_chunks
 from sinews.figures.tasks import Task, make_task
 

@@ -20,8 +20,8 @@ import numpy.typing as npt
 from sinews.dancers import DancerGenome
 from sinews.errors import SinewsError
 from sinews.evolve import Evaluator, FitnessSpec, SerialEvaluator, chunk_slices
-from sinews.experiments.dancer_fitness import DEFAULT_WEIGHTS, DancerContext, score_chunk
-from sinews.experiments.dancers import dance
+from sinews.experiments.dancers.score import DEFAULT_WEIGHTS, DancerContext, score_chunk
+from sinews.experiments.dancers.simulate import dance
 from sinews.experiments.evolution import (
     FloatStrategies,
     GenerationSummary,

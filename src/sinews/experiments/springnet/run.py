@@ -5,7 +5,7 @@ A run of kind ``"springnet-<figure>"`` stores, beside the common settings
 length, the net's number of masses, the physics and control rates, and the
 hand picks per generation (``keep``), so a resumed run reads the same picks.
 
-How nets are simulated and scored is in `sinews.experiments.springnet_fitness`;
+How nets are simulated and scored is in `sinews.experiments.springnet.score`;
 this module is the run's life: start, run or resume, hand picks, replay.
 """
 
@@ -25,9 +25,9 @@ from sinews.experiments.evolution import (
     new_strategy,
     record_picks,
 )
-from sinews.experiments.figure_runs import FigureExperiment, Replay, check_options, make_figure
+from sinews.experiments.figures import FigureExperiment, Replay, check_options, make_figure
 from sinews.experiments.run_config import EvolutionConfig, build_config
-from sinews.experiments.springnet_fitness import (
+from sinews.experiments.springnet.score import (
     TERMS,
     SpringNetScorer,
     SpringNetSettings,
@@ -201,7 +201,7 @@ class SpringNetExperiment:
 
 
 EXPERIMENT: FigureExperiment = SpringNetExperiment()
-"""The spring-net experiment (registered in `sinews.experiments.figure_runs`)."""
+"""The spring-net experiment (registered in `sinews.experiments.figures`)."""
 
 
 def _settings(info: RunInfo) -> SpringNetSettings:

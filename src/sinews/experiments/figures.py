@@ -50,8 +50,8 @@ FIGURES: dict[str, Callable[[], Figure]] = {"snake": snake, "luxo": luxo, "human
 """The built-in figures by name."""
 
 FIGURE_EXPERIMENTS: dict[str, str] = {
-    "springnet": "sinews.experiments.springnet_figures",
-    "gp": "sinews.experiments.gp_runs",
+    "springnet": "sinews.experiments.springnet.run",
+    "gp": "sinews.experiments.gp.run",
 }
 """Controller kind → the module whose ``EXPERIMENT`` runs it (imported when first used)."""
 
