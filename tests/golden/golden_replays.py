@@ -7,22 +7,17 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
-from sinews.experiments.dancers import run as dancer_evolution
-from sinews.experiments.figures import experiment_of
+from sinews.experiments.kinds import kind_of
 from sinews.store import RunStore
 
 
 def replay_positions(store: RunStore, run_id: int) -> npt.NDArray[np.floating]:
     """(T, ...) the replayed motion of individual 1 of the run's last generation: dancer
     node positions or figure qpos (a fixed individual, whatever "best" means)."""
-    best = store.individuals(run_id, store.last_generation(run_id))[1]
-    experiment = experiment_of(store.run(run_id))
-    if experiment is None:
-        trajectory, _ = dancer_evolution.simulate_individual(store, best)
-        return trajectory.positions
-    (replay,) = experiment.replay(store, [best])
-    assert replay.trajectory.qpos is not None
-    return replay.trajectory.qpos
+    individual = store.individuals(run_id, store.last_generation(run_id))[1]
+    (replay,) = kind_of(store.run(run_id)).replay(store, [individual])
+    qpos = replay.trajectory.qpos
+    return replay.trajectory.positions if qpos is None else qpos
 
 
 def studio_session(store: RunStore, songs: Path) -> list[int]:

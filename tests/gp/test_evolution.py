@@ -13,7 +13,7 @@ pytest.importorskip("mujoco")
 
 from sinews.evolve import SerialEvaluator
 from sinews.experiments.evolution import GenerationSummary
-from sinews.experiments.gp.run import EXPERIMENT
+from sinews.experiments.gp.run import KIND as EXPERIMENT
 from sinews.experiments.gp.score import GPRunSettings
 from sinews.experiments.gp.simulate import measure_programs
 from sinews.experiments.run_config import EvolutionConfig
@@ -28,7 +28,7 @@ OPTIONS = {"task": "hop", "target": "1.0", "population": 6, "generations": 3, "s
 def evolve(db: Path, on_generation: Callable[[GenerationSummary], None] | None = None) -> int:
     """A 6-program, 3-generation hop run in ``db``; its id."""
     with RunStore(db) as store:
-        run = EXPERIMENT.create_run(store, figure="luxo", file_values=RUN, options=OPTIONS)
+        run = EXPERIMENT.create_run(store, subject="luxo", file_values=RUN, options=OPTIONS)
         EXPERIMENT.run(store, run, evaluator=SerialEvaluator(), on_generation=on_generation)
     return run
 

@@ -16,10 +16,10 @@ pytest.importorskip("mujoco")
 
 from killed_runs import sinews_command
 from sinews.cli import main
-from sinews.cli.evolve import best_of
 from sinews.control.gp import format_program
-from sinews.experiments.gp.run import EXPERIMENT
+from sinews.experiments.gp.run import KIND as EXPERIMENT
 from sinews.experiments.gp.score import GPRunSettings
+from sinews.experiments.kinds import best_of
 from sinews.figures import luxo
 from sinews.figures.tasks import standing_height
 from sinews.render import FigureGeometry, FigurePainter, TaskScene
@@ -158,12 +158,12 @@ def test_humanoid_runs_draw_the_target_and_the_hand(
         (["luxo", "--target", "abc"], "--target for luxo-hop must be a distance in m"),
         (["luxo", "--target", "1,2"], "--target for luxo-hop must be a distance in m"),
         (["luxo", "--task", "dance"], "no luxo task 'dance'; choose from hop, limbo"),
-        (["snake", "--task", "hop"], "GP has no task for the snake"),
+        (["snake"], "no controller called 'gp' for the snake; choose from springnet"),
         (["humanoid", "--task", "nose", "--target", "0.4,1.2"], "the nose task has no --target"),
         (["humanoid", "--task", "reach", "--target", "0.45"], "must be X,Z in m"),
         (["luxo", "--keep", "KEEP"], "--keep does not apply to gp runs"),
         (["luxo", "--masses", "3"], "--masses does not apply to gp runs"),
-        (["luxo", "--strategy", "alton"], "breed with the 'gp' strategy, not 'alton'"),
+        (["luxo", "--strategy", "alton"], "gp runs breed with 'gp', not 'alton'"),
         (["luxo", "--config", "CONFIG"], "no fitness term called 'grace'"),
     ],
 )

@@ -11,7 +11,7 @@ from sinews.cli.progress import frame_progress
 from sinews.cli.songs import Bpm
 from sinews.dancers import DancerGenome
 from sinews.experiments.dancers import simulate as experiment
-from sinews.experiments.dancers.run import song_path
+from sinews.experiments.dancers.settings import song_path
 from sinews.limits import MAX_PICTURE_PIXELS, MIN_PICTURE_PIXELS
 from sinews.music.analysis import analyse_file
 from sinews.render import contact_sheet, render

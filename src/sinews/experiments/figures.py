@@ -1,10 +1,8 @@
-"""Evolving controllers for articulated figures: the figures, the controller kinds, hand picks.
+"""What the figure kinds share: the built-in figures, their fitness, hand-pick files.
 
-A figure run's kind is ``"<controller>-<figure>"`` (e.g. ``"springnet-snake"``).
-Each controller kind is one module with an ``EXPERIMENT`` object that follows
-`FigureExperiment`; `FIGURE_EXPERIMENTS` names those modules, so a new kind
-(e.g. ``gp``) plugs into ``sinews evolve FIGURE --controller KIND``, ``sinews
-runs resume``, ``render`` and the studio by adding one entry.
+A figure run's stored kind is ``"<controller>-<figure>"`` (e.g.
+``"springnet-snake"``); each controller is a run kind of
+`sinews.experiments.kinds`.
 
 Spring-net runs (seed 001) are rated by the distance travelled,
 ``|x_final - x_initial|`` of the figure's root, in metres; GP runs (seed 003)
@@ -13,47 +11,21 @@ by a task's goal and style terms.
 
 from __future__ import annotations
 
-import importlib
 import os
 import re
-from collections.abc import Callable, Container, Mapping, Sequence
-from dataclasses import dataclass
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any, Protocol
 
 import numpy as np
 import numpy.typing as npt
 
 from sinews.errors import SinewsError
-from sinews.evolve import Evaluator
-from sinews.experiments.evolution import GenerationSummary
 from sinews.figures import Figure, RolloutResult, humanoid, luxo, snake
-from sinews.render.figure import NetPanel, TaskScene
-from sinews.store import Individual, RunInfo, RunStore
-from sinews.trajectory import Trajectory
 
-__all__ = [
-    "FIGURES",
-    "FIGURE_EXPERIMENTS",
-    "FigureExperiment",
-    "Replay",
-    "check_options",
-    "distance_travelled",
-    "experiment_of",
-    "figure_experiment",
-    "make_figure",
-    "parse_keep",
-    "read_keep_file",
-]
+__all__ = ["FIGURES", "distance_travelled", "make_figure", "parse_keep", "read_keep_file"]
 
 FIGURES: dict[str, Callable[[], Figure]] = {"snake": snake, "luxo": luxo, "humanoid": humanoid}
 """The built-in figures by name."""
-
-FIGURE_EXPERIMENTS: dict[str, str] = {
-    "springnet": "sinews.experiments.springnet.run",
-    "gp": "sinews.experiments.gp.run",
-}
-"""Controller kind → the module whose ``EXPERIMENT`` runs it (imported when first used)."""
 
 
 def make_figure(name: str) -> Figure:
@@ -66,113 +38,6 @@ def make_figure(name: str) -> Figure:
 def distance_travelled(result: RolloutResult) -> npt.NDArray[np.float64]:
     """(P,) the paper's fitness: ``|x_final - x_initial|`` of each figure's root, metres."""
     return np.abs(result.distance)
-
-
-@dataclass(frozen=True, eq=False)
-class Replay:
-    """One stored individual simulated again, with what is needed to draw it.
-
-    Attributes:
-        individual: the stored individual.
-        figure: the figure it drives.
-        trajectory: its recorded motion (``qpos`` filled).
-        distance: signed distance its root travelled, m.
-        panel: its controller's state to draw beside the figure, or None.
-        scene: its task's marks (an X, a limbo post, a target), or None.
-    """
-
-    individual: Individual
-    figure: Figure
-    trajectory: Trajectory
-    distance: float
-    panel: NetPanel | None = None
-    scene: TaskScene | None = None
-
-
-class FigureExperiment(Protocol):
-    """What a controller kind offers the CLI and the studio.
-
-    Attributes:
-        fitness_label: what its fitness measures, for plots.
-    """
-
-    fitness_label: str
-
-    def create_run(
-        self,
-        store: RunStore,
-        *,
-        figure: str,
-        file_values: Mapping[str, Any],
-        options: Mapping[str, Any],
-    ) -> int:
-        """Record a new run (no generation yet) from a run file and options; return its id."""
-        ...
-
-    def run(
-        self,
-        store: RunStore,
-        run_id: int,
-        *,
-        evaluator: Evaluator,
-        generations: int | None = None,
-        on_generation: Callable[[GenerationSummary], None] | None = None,
-    ) -> None:
-        """Run (or resume, or extend to ``generations``) a run of this kind."""
-        ...
-
-    def pick(
-        self,
-        store: RunStore,
-        run_id: int,
-        generation: int,
-        picks: list[int],
-        *,
-        evaluator: Evaluator | None = None,
-    ) -> GenerationSummary:
-        """The studio's hook: keep ``picks`` of the last generation and breed the next."""
-        ...
-
-    def replay(
-        self, store: RunStore, individuals: Sequence[Individual], *, record_hz: float = 30.0
-    ) -> list[Replay]:
-        """Simulate stored individuals of one run again, exactly as they were scored."""
-        ...
-
-    def genome_document(self, store: RunStore, individual: Individual) -> dict[str, Any]:
-        """A stored individual's controller as a JSON-safe document (``runs best``)."""
-        ...
-
-    def genome_text(self, individual: Individual) -> str | None:
-        """A stored individual's controller as readable text (``runs show``), or None."""
-        ...
-
-
-def figure_experiment(controller: str) -> FigureExperiment:
-    """The experiment of a controller kind (see `FIGURE_EXPERIMENTS`)."""
-    if controller not in FIGURE_EXPERIMENTS:
-        raise SinewsError(
-            f"no controller called {controller!r}; choose from {', '.join(FIGURE_EXPERIMENTS)}"
-        )
-    experiment: FigureExperiment = importlib.import_module(
-        FIGURE_EXPERIMENTS[controller]
-    ).EXPERIMENT
-    return experiment
-
-
-def check_options(options: Mapping[str, Any], known: Container[str], controller: str) -> None:
-    """`SinewsError` naming the first option given (not None) that ``controller`` runs lack."""
-    for name, value in options.items():
-        if value is not None and name not in known:
-            raise SinewsError(f"--{name.replace('_', '-')} does not apply to {controller} runs")
-
-
-def experiment_of(info: RunInfo) -> FigureExperiment | None:
-    """The experiment that runs a stored run, or None if it is not a figure run."""
-    controller, _, figure = info.kind.partition("-")
-    if figure not in FIGURES or controller not in FIGURE_EXPERIMENTS:
-        return None
-    return figure_experiment(controller)
 
 
 _KEEP_LINE = re.compile(r"^\s*(\d+)\s*:\s*([\d\s,]*)$")

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from sinews.errors import SinewsError
-from sinews.experiments.dancers.run import song_path
+from sinews.experiments.dancers.settings import song_path
 from sinews.music import DEFAULT_DEMO, DEMO_NAMES, AudioError, MusicFeatures, analyse_file
 from sinews.store import RunInfo
 

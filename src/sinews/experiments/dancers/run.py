@@ -1,276 +1,278 @@
-"""Evolving dancers to a song: run settings, scoring on an evaluator, start, resume, replay.
+"""Dancer runs: start, run or resume, breed from picks, branch, re-tempo and replay.
 
-A dancer run stores, beside the common settings (`EvolutionConfig`), the
-song as given (``demo:groove`` or a path) and the dance length in seconds.
-The song file's path and SHA-256 go into the run's columns; resuming or
-re-simulating checks that the song is still the same.
+Settings are in `sinews.experiments.dancers.settings`, scoring in
+`sinews.experiments.dancers.score`. A run bred by hand (strategy
+``interactive``, the studio's) is not scored: a person's picks are its only
+judge. A hybrid run is scored and also takes picks, so a run made by
+``sinews evolve dancers --strategy hybrid`` can be continued in the studio.
 """
 
 from __future__ import annotations
 
-import os
-from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-import numpy.typing as npt
-
 from sinews.dancers import DancerGenome
 from sinews.errors import SinewsError
-from sinews.evolve import Evaluator, FitnessSpec, SerialEvaluator, chunk_slices
-from sinews.experiments.dancers.score import DEFAULT_WEIGHTS, DancerContext, score_chunk
+from sinews.evolve import Evaluator, GenomeSpace, SerialEvaluator
+from sinews.experiments.dancers.score import DancerScorer
+from sinews.experiments.dancers.settings import (
+    DEFAULT_SECONDS,
+    DEFAULTS,
+    DEMO_PREFIX,
+    NAME,
+    dancer_config,
+    song_path,
+)
 from sinews.experiments.dancers.simulate import dance
 from sinews.experiments.evolution import (
-    FloatStrategies,
     GenerationSummary,
-    Scores,
+    Strategies,
     continue_run,
-    new_strategy,
     record_picks,
 )
-from sinews.experiments.run_config import EvolutionConfig, build_config
-from sinews.music.analysis import analyse_file
-from sinews.music.demo import DEMO_NAMES, write_demo
+from sinews.experiments.kinds import KindOption, Replay, check_options, check_strategy
+from sinews.experiments.run_config import EvolutionConfig
+from sinews.music.analysis import MAX_BPM, MIN_BPM, analyse_file
 from sinews.music.features import MusicFeatures
 from sinews.store import Individual, RunInfo, RunStore
-from sinews.trajectory import Trajectory
 
-__all__ = [
-    "DEFAULTS",
-    "KIND",
-    "DancerScorer",
-    "create_dancer_run",
-    "dancer_config",
-    "pick_dancers",
-    "run_dancers",
-    "run_music",
-    "simulate_individual",
-    "song_path",
-]
+__all__ = ["GENOMES", "KIND", "DancerKind", "branch", "run_music", "set_tempo"]
 
-KIND = "dancers"
-DEMO_PREFIX = "demo:"
-DEFAULT_SECONDS = 30.0
-"""Default dance length: 30 s, or the whole song if it is shorter."""
-
-DEFAULTS: dict[str, Any] = {
-    "population": 16,
-    "generations": 20,
-    "seed": 0,
-    "fitness": ["beat-align", "liveliness", "humanoid", "on-stage", "variety"],
-    "weights": {},
-    "phase_in": {"start": 5, "full": 15},
-    "strategy": "ga",
-    "song": None,
-    "seconds": None,
-}
-"""Settings of a dancer run when neither the run file nor an option gives them."""
+GENOMES = GenomeSpace(size=DancerGenome.SIZE)
+"""A dancer genome: `DancerGenome.SIZE` floats in [0, 1]."""
 
 
-def dancer_config(
-    *, file_values: Mapping[str, Any], options: Mapping[str, Any]
-) -> tuple[EvolutionConfig, str, float | None]:
-    """A dancer run's settings from a run file and command-line options.
+class DancerKind:
+    """Dancers evolved to a song (see `sinews.experiments.kinds.RunKind`)."""
 
-    Returns:
-        The common config, the song (``demo:NAME`` or a path) and the dance
-        length in seconds (None: 30 s or the whole song if shorter).
+    name = NAME
+    subjects = (NAME,)
+    options = (
+        KindOption("song", str, "Song file, or demo:groove / demo:sway (bundled demo songs)."),
+        KindOption("seconds", float, "Dance length (default 30 s, or the song if shorter)."),
+        KindOption("fitness", str, "Fitness terms, main goal first, e.g. beat-align,liveliness "
+                   "(of beat-align, liveliness, humanoid, on-stage, variety; higher is better)."),
+        KindOption("weights", str, "Term weights, e.g. liveliness=0.2,humanoid=1."),
+        KindOption("phase_in", str, "Style weights 0 before START, full from FULL (default "
+                   "5:15)."),
+    )  # fmt: skip
+    defaults = DEFAULTS
+    summary = "dancers to a song"
+    strategies = ("ga", "hybrid", "interactive")
+    fitness_label = "fitness"
+    default_executor = "processes"
 
-    Raises:
-        SinewsError: no song, or a bad setting.
-    """
-    config, extra = build_config(
-        file_values=file_values,
-        options=options,
-        defaults=DEFAULTS,
-        term_defaults=DEFAULT_WEIGHTS,
-        kind_keys=("song", "seconds"),
-    )
-    if not extra["song"]:
-        raise SinewsError("give a song: --song FILE or --song demo:groove")
-    seconds = extra["seconds"]
-    if seconds is not None:
-        if isinstance(seconds, bool) or not isinstance(seconds, int | float) or not seconds > 0:
-            raise SinewsError(f"seconds must be a positive number, got {seconds!r}")
-        seconds = float(seconds)
-    return config, str(extra["song"]), seconds
+    def create_run(
+        self,
+        store: RunStore,
+        *,
+        subject: str,
+        file_values: Mapping[str, Any],
+        options: Mapping[str, Any],
+    ) -> int:
+        """Record a new dancer run (no generation yet); the song is analysed (and cached) here.
 
+        Args:
+            store: the run store.
+            subject: ``dancers``.
+            file_values: a run file's contents (see `sinews.experiments.run_config`).
+            options: command-line values (None = not given): song, seconds,
+                population, generations, seed, fitness, weights, phase_in, strategy.
 
-def song_path(song: str) -> Path:
-    """The file of a song setting; a demo song is written to the app's data dir once."""
-    if not song.startswith(DEMO_PREFIX):
-        return Path(song).expanduser().resolve()
-    name = song[len(DEMO_PREFIX) :]
-    if name not in DEMO_NAMES:
-        raise SinewsError(f"no demo song {name!r}; choose from {', '.join(DEMO_NAMES)}")
-    import platformdirs
-
-    path = Path(platformdirs.user_data_dir("sinews")) / "songs" / f"{name}.wav"
-    if not path.is_file():
-        path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_name(f"{path.name}.{os.getpid()}.part.wav")
-        write_demo(name, tmp)
-        os.replace(tmp, path)
-    return path
-
-
-@dataclass(frozen=True, eq=False)
-class DancerScorer:
-    """Scores dancer populations in chunks on an evaluator (see `sinews.experiments.evolution`).
-
-    Attributes:
-        music: the analysed song.
-        seconds: dance length.
-        spec: the fitness spec (its term names are computed).
-        evaluator: where the chunks run.
-    """
-
-    music: MusicFeatures
-    seconds: float
-    spec: FitnessSpec
-    evaluator: Evaluator
-
-    @property
-    def term_names(self) -> tuple[str, ...]:
-        """The spec's terms, main goal first."""
-        return self.spec.names
-
-    def __call__(self, genomes: npt.NDArray[np.float64], seeds: npt.NDArray[np.int64]) -> Scores:
-        """Dance (P, G) genomes with (P,) seeds, one batched rollout per chunk."""
-        context = DancerContext(music=self.music, seconds=self.seconds, terms=self.term_names)
-        slices = chunk_slices(len(genomes), self.evaluator.n_workers)
-        results = self.evaluator.map(score_chunk, context, [(genomes[s], seeds[s]) for s in slices])
-        return Scores(
-            terms=np.concatenate([r.terms for r in results]),
-            failed=np.concatenate([r.failed for r in results]),
+        Returns:
+            The run's id.
+        """
+        check_options(options, DEFAULTS, NAME)
+        config, song, seconds = dancer_config(file_values=file_values, options=options)
+        path = song_path(song)
+        music = analyse_file(path)
+        length = min(DEFAULT_SECONDS, music.duration) if seconds is None else seconds
+        check_strategy(self, config)
+        Strategies(GENOMES).new(config.to_dict(), config.seed)  # a bad strategy option fails here
+        return store.create_run(
+            NAME,
+            config={**config.to_dict(), "song": song, "seconds": length},
+            seed=config.seed,
+            genome_codec="float64",
+            song_hash=music.song_hash,
+            song_path=str(path),
         )
 
+    def run(
+        self,
+        store: RunStore,
+        run_id: int,
+        *,
+        evaluator: Evaluator,
+        generations: int | None = None,
+        on_generation: Callable[[GenerationSummary], None] | None = None,
+    ) -> None:
+        """Run (or resume, or extend) a dancer run; one bred by hand stops after generation 0."""
+        scorer = _scorer(store.run(run_id), evaluator)
+        continue_run(
+            store,
+            run_id,
+            scorer=scorer,
+            spec=None if scorer is None else scorer.spec,
+            strategies=Strategies(GENOMES),
+            generations=generations,
+            on_generation=on_generation,
+        )
 
-def create_dancer_run(
-    store: RunStore, config: EvolutionConfig, *, song: str, seconds: float | None
-) -> int:
-    """Record a new dancer run (no generation yet) and return its id.
+    def pick(
+        self,
+        store: RunStore,
+        run_id: int,
+        generation: int,
+        picks: list[int],
+        *,
+        evaluator: Evaluator | None = None,
+        mutation: float | None = None,
+    ) -> GenerationSummary:
+        """Record a person's picks in ``generation`` (the last) and breed the next.
 
-    The song is analysed here (and cached), and the dance length fixed.
-    """
-    path = song_path(song)
-    music = analyse_file(path)
-    length = min(DEFAULT_SECONDS, music.duration) if seconds is None else seconds
-    new_strategy(config.to_dict(), genome_size=DancerGenome.SIZE, seed=config.seed)  # validate
-    return store.create_run(
-        KIND,
-        config={**config.to_dict(), "song": song, "seconds": length},
-        seed=config.seed,
-        genome_codec="float64",
-        song_hash=music.song_hash,
-        song_path=str(path),
-    )
+        The picks are told to the run's interactive or hybrid strategy; the new
+        generation is danced and scored (hybrid) or stored unscored (by hand),
+        with the picked flags, in one transaction.
+
+        Args:
+            store: the run store.
+            run_id: an interactive or hybrid dancer run.
+            generation: the generation picked from (must be the last).
+            picks: indices of the picked dancers (empty: fresh random ones for an
+                interactive run).
+            evaluator: where to dance the new generation (default: this process).
+            mutation: the mutation strength for this breeding (default: the run's).
+        """
+        scorer = _scorer(store.run(run_id), evaluator or SerialEvaluator())
+        return record_picks(
+            store, run_id, generation, picks,
+            strategies=Strategies(GENOMES, mutation=mutation),
+            scorer=scorer, spec=None if scorer is None else scorer.spec,
+        )  # fmt: skip
+
+    def replay(
+        self,
+        store: RunStore,
+        individuals: Sequence[Individual],
+        *,
+        record_hz: float = 30.0,
+        forces: bool = False,
+    ) -> list[Replay]:
+        """Dance stored dancers of one run again (one batch, at 60 fps), with the song."""
+        if not individuals:
+            return []
+        run_ids = {ind.run_id for ind in individuals}
+        if len(run_ids) != 1:
+            raise SinewsError("replay individuals of one run at a time")
+        info = store.run(run_ids.pop())
+        music, path = run_music(info)
+        trajectories = dance(
+            [DancerGenome(ind.genome) for ind in individuals],
+            float(info.config["seconds"]),
+            music=music,
+            seeds=[int(ind.seed or 0) for ind in individuals],
+            record_forces=forces,
+        )
+        return [
+            Replay(
+                individual=ind,
+                trajectory=traj,
+                title=f"dancer, generation {ind.generation} #{ind.index}",
+                audio=path,
+            )
+            for ind, traj in zip(individuals, trajectories, strict=True)
+        ]
+
+    def genome_document(self, store: RunStore, individual: Individual) -> dict[str, Any]:
+        """The dancer's genome document (what ``sinews dance --genome`` reads)."""
+        return DancerGenome(individual.genome).to_dict()
+
+    def genome_text(self, individual: Individual) -> str | None:
+        """None: a genome has no short text form (see `genome_document`)."""
+        return None
+
+
+KIND = DancerKind()
+"""The dancer kind (registered in `sinews.experiments.kinds.BUILT_IN`)."""
 
 
 def run_music(info: RunInfo) -> tuple[MusicFeatures, Path]:
-    """The analysed song of a dancer run and its file, checked against the stored hash."""
+    """The analysed song of a dancer run (at its corrected tempo, if it has one) and its file.
+
+    Raises:
+        SinewsError: the song file changed since the run started.
+    """
     _check_kind(info)
     song = str(info.config["song"])
     path = song_path(song) if song.startswith(DEMO_PREFIX) else Path(str(info.song_path))
     music = analyse_file(path)
     if music.song_hash != info.song_hash:
         raise SinewsError(f"{path}: the song has changed since run {info.id} started")
-    return music, path
+    bpm = info.config.get("bpm")
+    return (music if bpm is None else analyse_file(path, bpm=float(bpm))), path
 
 
-def run_dancers(
+def set_tempo(store: RunStore, run_id: int, bpm: float | None) -> None:
+    """Correct (or, with None, un-correct) the tempo a run's song is analysed at."""
+    info = store.run(run_id)
+    _check_kind(info)
+    if bpm is not None and not MIN_BPM <= bpm <= MAX_BPM:
+        raise SinewsError(f"bpm must be in [{MIN_BPM:g}, {MAX_BPM:g}], got {bpm:g}")
+    store.update_config(run_id, {**info.config, "bpm": bpm})
+
+
+def branch(
     store: RunStore,
     run_id: int,
+    generation: int,
     *,
-    evaluator: Evaluator,
-    generations: int | None = None,
-    on_generation: Callable[[GenerationSummary], None] | None = None,
-) -> None:
-    """Run (or resume) a dancer run until it has its generations.
+    song: str | None = None,
+    seconds: float | None = None,
+) -> int:
+    """A new run holding copies of generations 0..``generation`` (one transaction).
 
     Args:
         store: the run store.
         run_id: a dancer run.
-        evaluator: where the dancers are simulated (any gives the same results).
-        generations: a new total, to extend a run (None keeps the stored one).
-        on_generation: called after each stored generation.
-    """
-    scorer = _scorer(store.run(run_id), evaluator)
-    continue_run(
-        store,
-        run_id,
-        scorer=scorer,
-        spec=scorer.spec,
-        strategies=FloatStrategies(DancerGenome.SIZE),
-        generations=generations,
-        on_generation=on_generation,
-    )
-
-
-def pick_dancers(
-    store: RunStore,
-    run_id: int,
-    generation: int,
-    picks: list[int],
-    *,
-    evaluator: Evaluator | None = None,
-) -> GenerationSummary:
-    """The studio's hook: record a person's picks and breed the next generation of dancers.
-
-    The picks (indices in ``generation``, the run's last) are told to the
-    run's interactive or hybrid strategy; the next generation is danced,
-    scored and stored with the picked flags in one transaction.
-
-    Args:
-        store: the run store.
-        run_id: an interactive or hybrid dancer run.
-        generation: the generation the person picked from (must be the last).
-        picks: indices of the picked dancers (empty: a fresh random
-            generation for an interactive run).
-        evaluator: where to dance the new generation (default: this process).
-    """
-    scorer = _scorer(store.run(run_id), evaluator or SerialEvaluator())
-    return record_picks(
-        store,
-        run_id,
-        generation,
-        picks,
-        strategies=FloatStrategies(DancerGenome.SIZE),
-        scorer=scorer,
-        spec=scorer.spec,
-    )
-
-
-def _scorer(info: RunInfo, evaluator: Evaluator) -> DancerScorer:
-    music, _ = run_music(info)
-    spec = EvolutionConfig.from_dict(info.config).fitness
-    return DancerScorer(
-        music=music, seconds=float(info.config["seconds"]), spec=spec, evaluator=evaluator
-    )
-
-
-def simulate_individual(
-    store: RunStore, individual: Individual, *, record_forces: bool = False
-) -> tuple[Trajectory, Path]:
-    """Re-simulate one stored dancer exactly as it was scored.
+        generation: the last generation to copy.
+        song: dance on to another song (``demo:NAME`` or a path), at its tempo as
+            analysed; default: the same song and tempo.
+        seconds: the branch's dance length on the new song (default: the run's,
+            cut to the new song's length).
 
     Returns:
-        Its trajectory and the song file (for sound).
+        The branch's id; its config names the run and generation it came from.
     """
-    info = store.run(individual.run_id)
-    music, path = run_music(info)
-    (traj,) = dance(
-        [DancerGenome(individual.genome)],
-        float(info.config["seconds"]),
-        music=music,
-        seeds=[int(individual.seed or 0)],
-        record_forces=record_forces,
+    info = store.run(run_id)
+    _check_kind(info)
+    config = {**info.config, "branch_of": [run_id, generation]}
+    if song is None:
+        return store.branch(run_id, generation, config=config)
+    path = song_path(song)
+    music = analyse_file(path)
+    length = min(float(info.config["seconds"]), music.duration) if seconds is None else seconds
+    config |= {"song": song, "seconds": length, "bpm": None}
+    return store.branch(
+        run_id, generation, config=config, song_hash=music.song_hash, song_path=str(path)
     )
-    return traj, path
+
+
+def _scorer(info: RunInfo, evaluator: Evaluator) -> DancerScorer | None:
+    """The run's scorer, or None for a run bred by hand (never scored)."""
+    config = EvolutionConfig.from_dict(info.config)
+    if config.by_hand:
+        _check_kind(info)
+        return None
+    music, _ = run_music(info)
+    return DancerScorer(
+        music=music, seconds=float(info.config["seconds"]), spec=config.fitness,
+        evaluator=evaluator,
+    )  # fmt: skip
 
 
 def _check_kind(info: RunInfo) -> None:
-    if info.kind != KIND:
+    if info.kind != NAME:
         raise SinewsError(f"run {info.id} evolves {info.kind}, not dancers")

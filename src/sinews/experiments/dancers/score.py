@@ -1,4 +1,4 @@
-"""Dancer fitness terms, and the work unit that scores a chunk of dancers.
+"""Dancer fitness terms, the work unit that scores a chunk of dancers, and the scorer.
 
 Every term is a named function of one `Trajectory` (which carries the
 music's beats), and **higher is better** for all of them; penalties are at
@@ -24,7 +24,9 @@ import numpy as np
 import numpy.typing as npt
 
 from sinews.dancers import DancerGenome
+from sinews.evolve import Evaluator, FitnessSpec, chunk_slices
 from sinews.experiments.dancers.simulate import dance
+from sinews.experiments.evolution import Scores
 from sinews.music.beat_align import beat_align_score
 from sinews.music.features import MusicFeatures
 from sinews.trajectory import Trajectory
@@ -34,6 +36,7 @@ __all__ = [
     "TERMS",
     "ChunkScores",
     "DancerContext",
+    "DancerScorer",
     "beat_align",
     "humanoid",
     "liveliness",
@@ -181,3 +184,35 @@ def score_chunk(
         dtype=np.float64,
     ).reshape(len(trajs), len(context.terms))
     return ChunkScores(terms=terms, failed=failed)
+
+
+@dataclass(frozen=True, eq=False)
+class DancerScorer:
+    """Scores dancer populations in chunks on an evaluator (see `sinews.experiments.evolution`).
+
+    Attributes:
+        music: the analysed song.
+        seconds: dance length.
+        spec: the fitness spec (its term names are computed).
+        evaluator: where the chunks run.
+    """
+
+    music: MusicFeatures
+    seconds: float
+    spec: FitnessSpec
+    evaluator: Evaluator
+
+    @property
+    def term_names(self) -> tuple[str, ...]:
+        """The spec's terms, main goal first."""
+        return self.spec.names
+
+    def __call__(self, genomes: npt.NDArray[np.float64], seeds: npt.NDArray[np.int64]) -> Scores:
+        """Dance (P, G) genomes with (P,) seeds, one batched rollout per chunk."""
+        context = DancerContext(music=self.music, seconds=self.seconds, terms=self.term_names)
+        slices = chunk_slices(len(genomes), self.evaluator.n_workers)
+        results = self.evaluator.map(score_chunk, context, [(genomes[s], seeds[s]) for s in slices])
+        return Scores(
+            terms=np.concatenate([r.terms for r in results]),
+            failed=np.concatenate([r.failed for r in results]),
+        )

@@ -19,10 +19,10 @@ from typing import Any
 from sinews.control.gp import BASIC_FUNCTIONS, GENOME_CODEC
 from sinews.errors import SinewsError
 from sinews.evolve import Evaluator
-from sinews.experiments.evolution import GenerationSummary, continue_run
-from sinews.experiments.figures import FigureExperiment, Replay, check_options
-from sinews.experiments.gp.score import GPRunSettings, GPScorer, GPStrategies
+from sinews.experiments.evolution import GenerationSummary, Strategies, continue_run
+from sinews.experiments.gp.score import GPRunSettings, GPScorer
 from sinews.experiments.gp.simulate import measure_programs
+from sinews.experiments.kinds import KindOption, Replay, check_options, check_strategy
 from sinews.experiments.run_config import ConfigError, EvolutionConfig, build_config
 from sinews.figures.tasks import Task, make_task
 from sinews.limits import check_number
@@ -33,9 +33,9 @@ __all__ = [
     "CLEAN_TERMS",
     "CONTROLLER",
     "DEFAULTS",
-    "EXPERIMENT",
+    "KIND",
     "TASKS",
-    "GPExperiment",
+    "GPKind",
     "adequate",
     "scene_of",
 ]
@@ -83,16 +83,33 @@ def adequate(store: RunStore, run_id: int, within: float) -> bool:
     return False
 
 
-class GPExperiment:
-    """GP runs for the CLI (see `FigureExperiment`)."""
+class GPKind:
+    """GP runs of the figures' tasks (see `sinews.experiments.kinds.RunKind`)."""
 
+    name = CONTROLLER
+    subjects = tuple(TASKS)
+    options = (
+        KindOption("task", str, "GP: the task, hop or limbo (Luxo), reach or nose (humanoid)."),
+        KindOption("target", str, "GP: where to go: the X, m (Luxo, default 1), or X,Z "
+                   "(humanoid)."),
+        KindOption("pole_height", float, "GP limbo: the bar's underside, m (default 80% of "
+                   "the lamp)."),
+        KindOption("seconds", float, "Length of each trial (GP: default the task's)."),
+        KindOption("until", float, "GP: stop at the first generation with a program this "
+                   "close to the goal (m) and clean (no head contact, never down, the bar "
+                   "untouched)."),
+    )  # fmt: skip
+    defaults = DEFAULTS
+    summary = "GP programs for a task"
+    strategies = ("gp",)
     fitness_label = "fitness (-distance to the goal, m, + style)"
+    default_executor = "serial"
 
     def create_run(
         self,
         store: RunStore,
         *,
-        figure: str,
+        subject: str,
         file_values: Mapping[str, Any],
         options: Mapping[str, Any],
     ) -> int:
@@ -100,7 +117,7 @@ class GPExperiment:
 
         Args:
             store: the run store.
-            figure: the figure's name (``luxo`` or ``humanoid``).
+            subject: the figure's name (``luxo`` or ``humanoid``).
             file_values: a run file's contents (see `sinews.experiments.run_config`).
             options: command-line values (None = not given): population,
                 generations, seed, seconds, strategy, task (``hop``, ``limbo``,
@@ -109,7 +126,7 @@ class GPExperiment:
         """
         check_options(options, DEFAULTS, CONTROLLER)
         given = {**file_values, **{k: v for k, v in options.items() if v is not None}}
-        task = _task(figure, given)
+        task = _task(subject, given)
         generations = int(given.get("generations") or DEFAULTS["generations"])
         defaults = {**DEFAULTS, "fitness": list(task.weights),
                     "phase_in": default_phase_in(generations)}  # fmt: skip
@@ -125,7 +142,8 @@ class GPExperiment:
         settings = GPRunSettings.from_values(
             {**extra, "task": task.name, "task_options": task.params, "seconds": task.seconds}
         )
-        GPStrategies(settings).new(config.to_dict(), config.seed)  # validate
+        check_strategy(self, config)
+        Strategies(settings.genomes).new(config.to_dict(), config.seed)  # bad options fail here
         return store.create_run(
             f"{CONTROLLER}-{task.figure.name}",
             config={**config.to_dict(), **settings.to_dict(), "until": until},
@@ -154,7 +172,7 @@ class GPExperiment:
         continue_run(
             store, run_id, scorer=GPScorer(settings, evaluator),
             spec=EvolutionConfig.from_dict(info.config).fitness,
-            strategies=GPStrategies(settings), generations=generations,
+            strategies=Strategies(settings.genomes), generations=generations,
             on_generation=on_generation,
             stop=None if until is None else lambda: adequate(store, run_id, float(until)),
         )  # fmt: skip
@@ -167,14 +185,22 @@ class GPExperiment:
         picks: list[int],
         *,
         evaluator: Evaluator | None = None,
+        mutation: float | None = None,
     ) -> GenerationSummary:
         """GP runs take no hand picks: `SinewsError`."""
         raise SinewsError("GP runs are bred by fitness alone; they take no hand picks")
 
     def replay(
-        self, store: RunStore, individuals: Sequence[Individual], *, record_hz: float = 30.0
+        self,
+        store: RunStore,
+        individuals: Sequence[Individual],
+        *,
+        record_hz: float = 30.0,
+        forces: bool = False,
     ) -> list[Replay]:
         """Simulate stored programs of one run again (one batch), with the task's scene."""
+        if forces:
+            raise SinewsError("figures have no force overlay; it is for dancer runs")
         if not individuals:
             return []
         run_ids = {ind.run_id for ind in individuals}
@@ -188,9 +214,11 @@ class GPExperiment:
         return [
             Replay(
                 individual=ind,
-                figure=settings.task.figure,
                 trajectory=done.result.trajectory(k),
+                title=f"{settings.task.figure.name}, generation {ind.generation} #{ind.index}",
+                summary=f"{abs(float(done.result.distance[k])):.3f} m",
                 distance=float(done.result.distance[k]),
+                figure=settings.task.figure,
                 scene=scene,
             )
             for k, ind in enumerate(individuals)
@@ -219,8 +247,8 @@ class GPExperiment:
         return str(individual.genome)
 
 
-EXPERIMENT: FigureExperiment = GPExperiment()
-"""The GP experiment (registered in `sinews.experiments.figures`)."""
+KIND = GPKind()
+"""The GP kind (registered in `sinews.experiments.kinds.BUILT_IN`)."""
 
 
 def default_phase_in(generations: int) -> dict[str, int]:

@@ -23,8 +23,7 @@ import numpy.typing as npt
 
 from sinews.control.gp import PrimitiveSet, Program, parse_program
 from sinews.errors import SinewsError
-from sinews.evolve import Evaluator, SerialEvaluator, StrategyError, strategy_rng
-from sinews.evolve.gp import GPStrategy, GPVariation
+from sinews.evolve import Evaluator, GenomeSpace, SerialEvaluator
 from sinews.experiments.evolution import Scores
 from sinews.experiments.gp.simulate import GPSettings, measure_programs, primitive_set
 from sinews.experiments.score_memory import ChunkContext, ScoreMemory, score_in_chunks
@@ -33,9 +32,7 @@ from sinews.figures.tasks import Task, make_task
 __all__ = [
     "GPRunSettings",
     "GPScorer",
-    "GPStrategies",
     "score_chunk",
-    "variation_of",
 ]
 
 
@@ -117,49 +114,14 @@ class GPRunSettings:
         """The run's primitives: the task's terminals, the functions, the constants."""
         return primitive_set(self.task, self.simulation())
 
+    @property
+    def genomes(self) -> GenomeSpace:
+        """The run's programs: its primitives, one tree per driven joint."""
+        return GenomeSpace(pset=self.pset, n_trees=len(self.task.joints))
+
     def parse(self, texts: Sequence[str]) -> list[Program]:
         """Stored S-expressions as programs of this run."""
         return [parse_program(text, self.pset) for text in texts]
-
-
-def variation_of(strategy: Mapping[str, Any]) -> GPVariation:
-    """The `GPVariation` of a config's strategy (``{"name": "gp", "options": {...}}``).
-
-    Raises:
-        SinewsError: another strategy, an unknown option or a bad value.
-    """
-    if strategy.get("name") != GPStrategy.name:
-        raise SinewsError(f"GP runs breed with the 'gp' strategy, not {strategy.get('name')!r}")
-    options = dict(strategy.get("options", {}))
-    try:
-        return GPVariation(**options)
-    except TypeError:
-        known = ", ".join(GPVariation.__dataclass_fields__)
-        message = f"unknown option for strategy 'gp' in {options}; known: {known}"
-        raise StrategyError(message) from None
-
-
-@dataclass(frozen=True)
-class GPStrategies:
-    """Makes a GP run's `GPStrategy` (the loop's `StrategyKind`).
-
-    Attributes:
-        settings: the run's settings.
-    """
-
-    settings: GPRunSettings
-
-    def new(self, config: Mapping[str, Any], seed: int) -> GPStrategy:
-        """A fresh strategy: ramped half-and-half programs, one tree per driven joint."""
-        return GPStrategy(
-            population_size=int(config["population"]), pset=self.settings.pset,
-            n_trees=len(self.settings.task.joints), rng=strategy_rng(seed),
-            variation=variation_of(config["strategy"]),
-        )  # fmt: skip
-
-    def restore(self, checkpoint: bytes) -> GPStrategy:
-        """`GPStrategy.from_bytes`."""
-        return GPStrategy.from_bytes(checkpoint)
 
 
 def score_chunk(context: ChunkContext[GPRunSettings], texts: Sequence[str]) -> Scores:

@@ -12,20 +12,21 @@ this module is the run's life: start, run or resume, hand picks, replay.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from sinews.errors import SinewsError
-from sinews.evolve import Evaluator, SerialEvaluator
+from sinews.evolve import Evaluator, GenomeSpace, SerialEvaluator
 from sinews.experiments.evolution import (
-    FloatStrategies,
     GenerationSummary,
+    Strategies,
     continue_run,
-    new_strategy,
     record_picks,
 )
-from sinews.experiments.figures import FigureExperiment, Replay, check_options, make_figure
+from sinews.experiments.figures import FIGURES, make_figure, read_keep_file
+from sinews.experiments.kinds import KindOption, Replay, check_options, check_strategy
 from sinews.experiments.run_config import EvolutionConfig, build_config
 from sinews.experiments.springnet.score import (
     TERMS,
@@ -36,7 +37,7 @@ from sinews.experiments.springnet.score import (
 from sinews.render.figure import NetPanel
 from sinews.store import Individual, RunInfo, RunStore
 
-__all__ = ["CONTROLLER", "DEFAULTS", "EXPERIMENT", "SpringNetExperiment"]
+__all__ = ["CONTROLLER", "DEFAULTS", "KIND", "SpringNetKind"]
 
 CONTROLLER = "springnet"
 DEFAULTS: dict[str, Any] = {
@@ -58,33 +59,51 @@ DEFAULTS: dict[str, Any] = {
 _KIND_KEYS = ("figure", "seconds", "masses", "physics_hz", "control_hz", "keep")
 
 
-class SpringNetExperiment:
-    """Spring-net runs for the CLI and the studio (see `FigureExperiment`)."""
+class SpringNetKind:
+    """Spring-net runs of the figures (see `sinews.experiments.kinds.RunKind`)."""
 
+    name = CONTROLLER
+    subjects = tuple(FIGURES)
+    options = (
+        KindOption("seconds", float, "Length of each trial (spring nets: default 5 s)."),
+        KindOption("masses", int, "Point masses per spring net (default: 4, or one per joint)."),
+        KindOption("keep", Path, "Spring nets' hand picks: a file of lines 'GENERATION: INDEX "
+                   "INDEX ...' naming individuals that survive that generation whatever their "
+                   "rank."),
+    )  # fmt: skip
+    defaults = DEFAULTS
+    summary = "spring nets that move it as far as they can (|x_end - x_start|)"
+    strategies = ("alton", "ga", "hybrid")
     fitness_label = "distance (m)"
+    default_executor = "serial"
 
     def create_run(
         self,
         store: RunStore,
         *,
-        figure: str,
+        subject: str,
         file_values: Mapping[str, Any],
         options: Mapping[str, Any],
     ) -> int:
-        """Record a new run of spring nets for ``figure`` (no generation yet); return its id.
+        """Record a new run of spring nets for the figure ``subject`` (no generation yet).
 
         Args:
             store: the run store.
-            figure: the figure's name.
+            subject: the figure's name.
             file_values: a run file's contents (see `sinews.experiments.run_config`).
             options: command-line values (None = not given): population,
-                generations, seed, seconds, masses, strategy, keep (generation →
-                indices that must survive it)...
+                generations, seed, seconds, masses, strategy, keep (a keep file,
+                or generation → indices that must survive it)...
+
+        Returns:
+            The run's id.
         """
         check_options(options, DEFAULTS, CONTROLLER)
+        if isinstance(options.get("keep"), str | Path):
+            options = {**options, "keep": read_keep_file(options["keep"])}
         config, extra = build_config(
             file_values=file_values,
-            options={**options, "figure": figure},
+            options={**options, "figure": subject},
             defaults=DEFAULTS,
             term_defaults=TERMS,
             kind_keys=_KIND_KEYS,
@@ -93,8 +112,8 @@ class SpringNetExperiment:
         keep = _keep(extra.get("keep") or {})
         if any(i >= config.population for chosen in keep.values() for i in chosen):
             raise SinewsError(f"keep: indices must be below the population ({config.population})")
-        genome_size = settings.encoding.size
-        new_strategy(config.to_dict(), genome_size=genome_size, seed=config.seed)  # validate
+        check_strategy(self, config)
+        Strategies(_genomes(settings)).new(config.to_dict(), config.seed)  # bad options fail here
         return store.create_run(
             f"{CONTROLLER}-{settings.figure}",
             config={**config.to_dict(), **settings.to_dict(), "keep": keep},
@@ -120,7 +139,7 @@ class SpringNetExperiment:
             run_id,
             scorer=scorer,
             spec=scorer.spec,
-            strategies=FloatStrategies(settings.encoding.size),
+            strategies=Strategies(_genomes(settings)),
             generations=generations,
             picks=lambda generation: keep.get(str(generation), []),
             on_generation=on_generation,
@@ -134,18 +153,27 @@ class SpringNetExperiment:
         picks: list[int],
         *,
         evaluator: Evaluator | None = None,
+        mutation: float | None = None,
     ) -> GenerationSummary:
-        """The studio's hook: ``picks`` of ``generation`` (the last) survive; breed the next."""
+        """``picks`` of ``generation`` (the last) survive; breed and score the next."""
         settings, scorer = _scorer(store.run(run_id), evaluator or SerialEvaluator())
+        strategies = Strategies(_genomes(settings), mutation=mutation)
         return record_picks(
             store, run_id, generation, picks,
-            strategies=FloatStrategies(settings.encoding.size), scorer=scorer, spec=scorer.spec,
+            strategies=strategies, scorer=scorer, spec=scorer.spec,
         )  # fmt: skip
 
     def replay(
-        self, store: RunStore, individuals: Sequence[Individual], *, record_hz: float = 30.0
+        self,
+        store: RunStore,
+        individuals: Sequence[Individual],
+        *,
+        record_hz: float = 30.0,
+        forces: bool = False,
     ) -> list[Replay]:
         """Simulate stored nets of one run again (one batch) with their nets' motion."""
+        if forces:
+            raise SinewsError("figures have no force overlay; it is for dancer runs")
         if not individuals:
             return []
         run_ids = {ind.run_id for ind in individuals}
@@ -161,9 +189,11 @@ class SpringNetExperiment:
         return [
             Replay(
                 individual=ind,
-                figure=figure,
                 trajectory=result.trajectory(k),
+                title=f"{figure.name}, generation {ind.generation} #{ind.index}",
+                summary=f"{abs(float(result.distance[k])):.3f} m",
                 distance=float(result.distance[k]),
+                figure=figure,
                 panel=NetPanel(
                     positions=net[:, k],
                     masses=nets.masses[k],
@@ -200,8 +230,12 @@ class SpringNetExperiment:
         return None
 
 
-EXPERIMENT: FigureExperiment = SpringNetExperiment()
-"""The spring-net experiment (registered in `sinews.experiments.figures`)."""
+KIND = SpringNetKind()
+"""The spring-net kind (registered in `sinews.experiments.kinds.BUILT_IN`)."""
+
+
+def _genomes(settings: SpringNetSettings) -> GenomeSpace:
+    return GenomeSpace(size=settings.encoding.size)
 
 
 def _settings(info: RunInfo) -> SpringNetSettings:
