@@ -32,7 +32,6 @@ from sinews.figures import Figure
 from sinews.render._output import atomic_output, suffix_of
 from sinews.render.canvas import Canvas, Color, Point, shade
 from sinews.render.errors import RenderError
-from sinews.render.ffmpeg import encode_mp4
 from sinews.render.figure_geometry import (
     CAPSULE,
     ELLIPSOID,
@@ -42,6 +41,7 @@ from sinews.render.figure_geometry import (
 from sinews.render.figure_panel import NetPanel, draw_panel
 from sinews.render.figure_scene import TaskScene, draw_scene_back, draw_scene_front
 from sinews.render.frames import paint_frames
+from sinews.render.mp4 import encode_mp4
 from sinews.render.raster import RasterCanvas
 from sinews.render.style import Style, default_colors
 from sinews.render.svg import SvgCanvas

@@ -15,8 +15,8 @@ from PIL import Image
 
 from sinews.render._output import atomic_output, suffix_of
 from sinews.render.errors import RenderError
-from sinews.render.ffmpeg import encode_mp4
 from sinews.render.frames import paint_frames
+from sinews.render.mp4 import encode_mp4
 from sinews.render.painter import FramePainter, fit_positions, frame_index, node_radii
 from sinews.render.raster import RasterCanvas
 from sinews.render.style import Overlay, Style

@@ -26,7 +26,7 @@ from sinews.render import (
     paint_frames,
     render,
 )
-from sinews.render.ffmpeg import encode_mp4
+from sinews.render.mp4 import encode_mp4
 from sinews.scenes.messages import SceneRun
 from sinews.trajectory import Trajectory
 
