@@ -112,7 +112,7 @@ def _as_colors(rgb: npt.NDArray[np.floating] | npt.NDArray[np.uint8]) -> list[Co
 
 
 class FramePainter:
-    """Draws frames of one trajectory; sizes and scales are worked out once.
+    """Draws frames of one spring-mass trajectory (a `LayeringPainter`); sizes are worked out once.
 
     Nodes are discs of their radius (at least ``style.min_radius_px``) in
     their colour with a darker rim (or hearts, or spikes pointing away from
@@ -164,6 +164,21 @@ class FramePainter:
         self._responders = self._check_responders()
         if caption is not None:
             self._caption_text(0)
+
+    @property
+    def size(self) -> tuple[int, int]:
+        """(width, height) of the view, pixels."""
+        return (self.view.width, self.view.height)
+
+    @property
+    def n_frames(self) -> int:
+        """Frames of the trajectory."""
+        return self.traj.n_frames
+
+    @property
+    def fps(self) -> float:
+        """The trajectory's frame rate."""
+        return self.traj.fps
 
     def _decide_force_scale(self) -> float | None:
         if self.overlay is None or not self.overlay.forces or self.traj.forces is None:
