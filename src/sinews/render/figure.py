@@ -22,14 +22,14 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Iterator, Sequence
+from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
 import numpy.typing as npt
 
 from sinews.figures import Figure
-from sinews.render._output import atomic_output, suffix_of
+from sinews.render._output import suffix_of
 from sinews.render.canvas import Canvas, Color, Point, shade
 from sinews.render.errors import RenderError
 from sinews.render.figure_geometry import (
@@ -40,12 +40,10 @@ from sinews.render.figure_geometry import (
 )
 from sinews.render.figure_panel import NetPanel, draw_panel
 from sinews.render.figure_scene import TaskScene, draw_scene_back, draw_scene_front
-from sinews.render.frames import paint_frames
-from sinews.render.mp4 import encode_mp4
-from sinews.render.raster import RasterCanvas
+from sinews.render.painting import Clips, Every, Layered, frame_step
 from sinews.render.style import Style, default_colors
-from sinews.render.svg import SvgCanvas
-from sinews.render.view import View
+from sinews.render.view import Size, View, pixels
+from sinews.render.writer import write
 from sinews.trajectory import Trajectory
 
 __all__ = [
@@ -58,7 +56,6 @@ __all__ = [
 ]
 
 FloatArray = npt.NDArray[np.float64]
-Size = int | tuple[int, int]
 
 _START_COLOR: Color = (46, 139, 87)
 _DISTANCE_COLOR: Color = (200, 60, 40)
@@ -67,13 +64,10 @@ _PANEL_SHARE = 0.22  # of the canvas height
 _GROUND_SHARE = 0.2  # of the figure area, below the ground line
 
 
-def _pixels(size: Size) -> tuple[int, int]:
-    width, height = (size, size) if isinstance(size, int) else size
-    return int(width) + int(width) % 2, int(height) + int(height) % 2
-
-
 class FigurePainter:
-    """Draws frames of one figure's trajectory (views and colours worked out once).
+    """Draws frames of one figure's trajectory; views and colours are worked out once.
+
+    A `LayeringPainter`: several frames make a strobe picture.
 
     Args:
         geometry: the figure's geoms.
@@ -113,7 +107,7 @@ class FigurePainter:
         self.geometry, self.traj, self.panel, self.title = geometry, traj, panel, title
         self.scene = scene
         self.style = style or Style()
-        self.width, self.height = _pixels(size)
+        self.width, self.height = pixels(size, even=True)
         self.poses = geometry.poses(traj.qpos)
         self.root_x = np.asarray(traj.qpos, dtype=np.float64)[:, 0]
         self._panel_px = round(_PANEL_SHARE * self.height) if panel is not None else 0
@@ -124,9 +118,19 @@ class FigurePainter:
         self._text_px = max(9.0, 0.045 * min(self.width, self.height))
 
     @property
+    def size(self) -> tuple[int, int]:
+        """(width, height), pixels."""
+        return (self.width, self.height)
+
+    @property
     def n_frames(self) -> int:
         """Frames of the trajectory."""
         return self.traj.n_frames
+
+    @property
+    def fps(self) -> float:
+        """The trajectory's frame rate."""
+        return self.traj.fps
 
     def _camera(self, boxes: FloatArray, still: bool) -> list[View]:
         """One view per frame: fixed on the whole motion, or following the figure.
@@ -293,16 +297,6 @@ def _color(rgb: FloatArray) -> Color:
     return (r, g, b)
 
 
-def _frames(painter: FigurePainter, step: int) -> Iterator[npt.NDArray[np.uint8]]:
-    return paint_frames(painter.draw, (painter.width, painter.height), painter.n_frames, step=step)
-
-
-def _step(traj: Trajectory, fps: float | None) -> int:
-    if fps is not None and not fps > 0:
-        raise RenderError(f"fps must be positive, got {fps}")
-    return 1 if fps is None else max(1, math.ceil(traj.fps / fps - 1e-9))
-
-
 def render_figure_sequence(
     painters: Sequence[FigurePainter], path: str | os.PathLike[str], *, fps: float | None = None
 ) -> Path:
@@ -317,17 +311,9 @@ def render_figure_sequence(
         ``path``.
     """
     suffix_of(path, (".mp4",))
-    if not painters:
-        raise RenderError("no clips to render")
-    first = painters[0]
-    if any((p.width, p.height, p.traj.fps) != (first.width, first.height, first.traj.fps)
-           for p in painters):  # fmt: skip
-        raise RenderError("every clip needs the same size and frame rate")
-    step = _step(first.traj, fps)
-    with atomic_output(path) as tmp:
-        frames = (frame for painter in painters for frame in _frames(painter, step))
-        encode_mp4(frames, tmp, size=(first.width, first.height), fps=first.traj.fps / step)
-    return Path(path)
+    clips = Clips(tuple(painters))  # checks there are clips, of one size and rate
+    step = frame_step(clips.fps, fps)
+    return write(Clips(tuple(Every(p, step) for p in painters)), path, kind=".mp4")
 
 
 def render_figure(
@@ -366,15 +352,5 @@ def render_figure(
                             still=suffix != ".mp4", scene=scene)  # fmt: skip
     if suffix == ".mp4":
         return render_figure_sequence([painter], path, fps=fps)
-    frames = np.unique(np.linspace(0, traj.n_frames - 1, max(1, strobe)).round().astype(int))
-    if suffix == ".svg":
-        vector = SvgCanvas(painter.width, painter.height)
-        painter.draw(vector, frames.tolist())
-        with atomic_output(path) as tmp:
-            tmp.write_text(vector.to_string(), encoding="utf-8")
-        return Path(path)
-    raster = RasterCanvas(painter.width, painter.height)
-    painter.draw(raster, frames.tolist())
-    with atomic_output(path) as tmp:
-        raster.image().save(tmp, format="PNG")
-    return Path(path)
+    frames = np.linspace(0, traj.n_frames - 1, max(1, strobe)).round().astype(int)
+    return write(Layered(painter, tuple(np.unique(frames).tolist())), path, kind=suffix)
