@@ -41,7 +41,7 @@ from sinews.render.figure_geometry import (
 from sinews.render.figure_panel import NetPanel, draw_panel
 from sinews.render.figure_scene import TaskScene, draw_scene_back, draw_scene_front
 from sinews.render.painting import Clips, Every, Layered, frame_step
-from sinews.render.style import Style, default_colors
+from sinews.render.style import Style, as_colors, default_colors
 from sinews.render.view import Size, View, pixels
 from sinews.render.writer import write
 from sinews.trajectory import Trajectory
@@ -113,8 +113,8 @@ class FigurePainter:
         self._panel_px = round(_PANEL_SHARE * self.height) if panel is not None else 0
         self.views = self._camera(geometry.extents(self.poses), still)
         colors = default_colors(len(geometry.figure.body_names)).astype(np.float64)
-        self._fill = [_color(c) for c in colors[geometry.body]]
-        self._joint_colors = [_color(c) for c in colors[geometry.joint_bodies]]
+        self._fill = as_colors(colors[geometry.body])
+        self._joint_colors = as_colors(colors[geometry.joint_bodies])
         self._text_px = max(9.0, 0.045 * min(self.width, self.height))
 
     @property
@@ -230,8 +230,8 @@ class FigurePainter:
         background = np.asarray(self.style.background, dtype=np.float64)
         for k, kind in enumerate(self.geometry.kinds.tolist()):
             fill_rgb = np.asarray(self._fill[k], dtype=np.float64) * (1 - fade) + background * fade
-            fill = _color(fill_rgb)
-            rim = _color(fill_rgb * 0.55 * (1 - fade) + background * fade)
+            (fill,) = as_colors(fill_rgb)
+            (rim,) = as_colors(fill_rgb * 0.55 * (1 - fade) + background * fade)
             c, sx, sz, r = center[k], ax[k] * half[k, 0], az[k] * half[k, 1], half[k, 2]
             if kind in (CAPSULE, SPHERE):
                 ends = view.to_px(np.array([c - sz, c + sz]))
@@ -290,11 +290,6 @@ def _smooth(values: FloatArray, fps: float) -> FloatArray:
     window = max(1, round(fps / 4))
     kernel = np.ones(2 * window + 1) / (2 * window + 1)
     return np.convolve(np.pad(values, window, mode="edge"), kernel, mode="valid")
-
-
-def _color(rgb: FloatArray) -> Color:
-    r, g, b = (int(v) for v in np.clip(np.round(rgb), 0, 255).tolist())
-    return (r, g, b)
 
 
 def render_figure_sequence(
