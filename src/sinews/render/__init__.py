@@ -18,14 +18,8 @@ from __future__ import annotations
 from sinews.render._output import atomic_output
 from sinews.render.canvas import Canvas, Color, Point
 from sinews.render.errors import RenderError
-from sinews.render.figure import (
-    FigureGeometry,
-    FigurePainter,
-    NetPanel,
-    TaskScene,
-    render_figure,
-    render_figure_sequence,
-)
+from sinews.render.figure import FigureGeometry, FigurePainter, NetPanel, TaskScene
+from sinews.render.figure_media import render_figure, render_figure_sequence
 from sinews.render.frames import iter_frames, paint_frames, reporting_progress
 from sinews.render.media import (
     make_painter,

@@ -85,7 +85,7 @@ def default_colors(n_nodes: int) -> npt.NDArray[np.uint8]:
     return np.round(np.array(rgb, dtype=np.float64).reshape(-1, 3) * 255).astype(np.uint8)
 
 
-def as_colors(rgb: npt.ArrayLike) -> list[Color]:
+def as_colors(rgb: npt.NDArray[np.floating] | npt.NDArray[np.uint8]) -> list[Color]:
     """(..., 3) channel values as colours (rounded, clipped to 0–255), in row order."""
     clipped = np.clip(np.round(rgb), 0, 255).astype(int).reshape(-1, 3)
     return [(int(r), int(g), int(b)) for r, g, b in clipped]
