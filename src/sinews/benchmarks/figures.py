@@ -33,8 +33,7 @@ from sinews.control.springnet import SpringNetController, SpringNetGenome
 from sinews.evolve import SerialEvaluator
 from sinews.experiments.springnet.run import KIND
 from sinews.experiments.springnet.score import SpringNetSettings, simulate
-from sinews.figures import Figure, humanoid, luxo, rollout, snake
-from sinews.figures._mujoco import require_mujoco
+from sinews.figures import Figure, humanoid, luxo, require_mujoco, rollout, snake
 from sinews.store import RunStore
 
 __all__ = ["run"]

@@ -40,8 +40,7 @@ from sinews.evolve import FitnessSpec, PhaseIn
 from sinews.evolve.gp import GPStrategy
 from sinews.experiments.gp.run import default_phase_in
 from sinews.experiments.gp.simulate import GPSettings, measure_programs, primitive_set, wiring
-from sinews.figures import rollout
-from sinews.figures._mujoco import require_mujoco
+from sinews.figures import require_mujoco, rollout
 from sinews.figures.tasks import Task, luxo_hop
 
 __all__ = ["run"]

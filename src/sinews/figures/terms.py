@@ -28,22 +28,15 @@ The terms (`TERMS`), each **higher is better** (penalties are ≤ 0), as
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 import numpy.typing as npt
 
 from sinews.figures.figure import Figure, FigureError
-
-if TYPE_CHECKING:
-    from sinews.figures.tasks import Task
+from sinews.figures.task import TERMS, Task
 
 __all__ = ["TERMS", "TaskMeter"]
 
 FloatArray = npt.NDArray[np.float64]
-
-TERMS = ("distance", "early", "still", "head", "fallen", "neutral", "energy", "touch")
-"""Every fitness term a task can weigh; ``distance`` is always the main goal."""
 
 
 class TaskMeter:

@@ -12,14 +12,14 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
-from sinews.music.ffmpeg import find_ffmpeg
+from sinews.ffmpeg import find_ffmpeg
 from sinews.render.errors import RenderError
 
 __all__ = ["encode_mp4", "ffmpeg_exe"]
 
 
 def ffmpeg_exe() -> str:
-    """Path of the ffmpeg executable (see `sinews.music.ffmpeg.find_ffmpeg`)."""
+    """Path of the ffmpeg executable (see `sinews.ffmpeg.find_ffmpeg`); RenderError if none."""
     exe = find_ffmpeg()
     if exe is None:
         raise RenderError("ffmpeg is not available: pip install imageio-ffmpeg")
