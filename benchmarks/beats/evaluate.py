@@ -8,8 +8,8 @@ whole per-song analysis: bands, onsets, triggers, tempo, beats) runs on it and i
 are scored against reference/ID.txt: F (70 ms), octave-tolerant F, CMLt, AMLt (beats after
 5 s, as mir_eval), and the tempo ratio ours / reference (median inter-beat intervals).
 With --librosa-python, the same decoded samples go to that interpreter, which times
-librosa's `onset_strength` + `beat_track` warm (after one untimed call) on them; both
-timings are the best of --repeats calls in this one run.
+librosa's `onset_strength` + `beat_track` warm (after one untimed call) on them right
+after ours on each song; both timings are the best of --repeats calls.
 """
 
 from __future__ import annotations
@@ -31,21 +31,20 @@ from fetch import default_cache, excerpt_path, load_corpus  # noqa: E402
 from metrics import score, tempo_of, trim  # noqa: E402
 
 _LIBROSA_TIMER = r"""
-import json, sys, time
+import sys, time
 import numpy as np
 import librosa
-sr = int(sys.argv[1]); repeats = int(sys.argv[2]); out = {}
-for path in sys.argv[3:]:
+for line in sys.stdin:
+    path, sr, repeats = line.split()
     y = np.load(path)
     def run():
-        env = librosa.onset.onset_strength(y=y, sr=sr)
-        return librosa.beat.beat_track(onset_envelope=env, sr=sr, units="time")
+        env = librosa.onset.onset_strength(y=y, sr=int(sr))
+        return librosa.beat.beat_track(onset_envelope=env, sr=int(sr), units="time")
     run()
     best = float("inf")
-    for _ in range(repeats):
+    for _ in range(int(repeats)):
         t = time.perf_counter(); run(); best = min(best, time.perf_counter() - t)
-    out[path] = best
-print(json.dumps(out))
+    print(best, flush=True)
 """
 
 
@@ -71,8 +70,15 @@ def main() -> None:
     ]
     analyse(load_audio(excerpt_path(args.cache, chosen[0]["id"])))  # warm numba / caches
     rows = []
+    librosa = None
+    if args.librosa_python:
+        librosa = subprocess.Popen(
+            [args.librosa_python, "-c", _LIBROSA_TIMER],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            text=True,
+        )
     with tempfile.TemporaryDirectory() as tmp:
-        npys = {}
         for song in chosen:
             sid = song["id"]
             audio = load_audio(excerpt_path(args.cache, sid))
@@ -90,21 +96,16 @@ def main() -> None:
             row["first_beat"] = float(features.beats[0]) if len(features.beats) else float("nan")
             row["ref_first_beat"] = float(ref[0])
             row["ours_s"] = best
+            if librosa is not None and librosa.stdin and librosa.stdout:
+                # the same decoded samples, timed right after ours (one untimed warm-up call)
+                npy = Path(tmp) / f"{sid}.npy"
+                np.save(npy, audio.samples)
+                librosa.stdin.write(f"{npy} {audio.sample_rate} {args.repeats}\n")
+                librosa.stdin.flush()
+                row["librosa_s"] = float(librosa.stdout.readline())
             rows.append(row)
-            npys[sid] = Path(tmp) / f"{sid}.npy"
-            np.save(npys[sid], audio.samples)
-            sr = audio.sample_rate
-        if args.librosa_python:
-            out = subprocess.run(
-                [args.librosa_python, "-c", _LIBROSA_TIMER, str(sr), str(args.repeats)]
-                + [str(p) for p in npys.values()],
-                check=True,
-                capture_output=True,
-                text=True,
-            )
-            times = json.loads(out.stdout)
-            for row in rows:
-                row["librosa_s"] = times[str(npys[row["id"]])]
+    if librosa is not None:
+        librosa.communicate()
     print_table(rows)
     if args.json:
         args.json.write_text(json.dumps(rows, indent=1))
