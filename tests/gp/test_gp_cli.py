@@ -18,7 +18,7 @@ from killed_runs import sinews_command
 from sinews.cli import main
 from sinews.control.gp import format_program
 from sinews.experiments.gp.run import KIND as EXPERIMENT
-from sinews.experiments.gp.score import GPRunSettings
+from sinews.experiments.gp.settings import GPSettings
 from sinews.experiments.kinds import best_of
 from sinews.figures import luxo
 from sinews.figures.tasks import standing_height
@@ -85,7 +85,7 @@ def test_a_hop_run_prints_saves_and_draws_its_program(
     assert status == 0 and '"luxo-hop"' in out
     program = out[out.index("(list") :].strip()
     with RunStore(db) as store:
-        settings = GPRunSettings.from_values(store.run(1).config)
+        settings = GPSettings.from_values(store.run(1).config)
         best = best_of(store, 1)
     assert settings.task_options == {"target": 1.5} and program == best.genome
     (parsed,) = settings.parse([program])  # with the run's terminals and functions

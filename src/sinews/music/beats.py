@@ -233,7 +233,8 @@ def _beat_frames(normalised: npt.NDArray[np.float64], period: float) -> npt.NDAr
     """Beat frames of the DP tracker at ``period`` frames on a normalised envelope."""
     kernel_half = max(1, round(period))
     kernel = np.exp(-0.5 * (np.arange(-kernel_half, kernel_half + 1) * 32.0 / period) ** 2)
-    local = np.convolve(normalised, kernel, mode="same")
+    # "same" by hand: np.convolve's "same" is as long as the kernel when the song is shorter
+    local = np.convolve(normalised, kernel)[kernel_half : kernel_half + len(normalised)]
     offsets = np.arange(-round(2 * period), -round(period / 2) + 1)
     penalty = -TIGHTNESS * np.log(-offsets / period) ** 2
     back, score = _dynamic_programme(local, offsets, penalty, 0.01 * float(local.max()))

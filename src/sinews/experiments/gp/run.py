@@ -16,17 +16,18 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
-from sinews.control.gp import BASIC_FUNCTIONS, GENOME_CODEC
+from sinews.control.gp import GENOME_CODEC
 from sinews.errors import SinewsError
 from sinews.evolve import Evaluator
 from sinews.experiments.evolution import GenerationSummary, Strategies, continue_run
-from sinews.experiments.gp.score import GPRunSettings, GPScorer
+from sinews.experiments.gp.score import GPScorer
+from sinews.experiments.gp.settings import GPSettings, Runtime
 from sinews.experiments.gp.simulate import measure_programs
 from sinews.experiments.kinds import KindOption, Replay, check_options, check_strategy
 from sinews.experiments.run_config import ConfigError, EvolutionConfig, build_config
 from sinews.figures.tasks import Task, make_task
 from sinews.limits import check_number
-from sinews.render.figure_scene import TaskScene
+from sinews.render.figure_scene import scene_of
 from sinews.store import Individual, RunInfo, RunStore
 
 __all__ = [
@@ -37,7 +38,6 @@ __all__ = [
     "TASKS",
     "GPKind",
     "adequate",
-    "scene_of",
 ]
 
 CONTROLLER = "gp"
@@ -56,10 +56,10 @@ DEFAULTS: dict[str, Any] = {
     "target": None,
     "pole_height": None,
     "seconds": None,
-    "control_hz": 100,
-    "physics_hz": 1000,
-    "functions": list(BASIC_FUNCTIONS),
-    "erc_range": [-1.0, 1.0],
+    "control_hz": GPSettings.control_hz,
+    "physics_hz": GPSettings.physics_hz,
+    "functions": list(GPSettings.functions),
+    "erc_range": list(GPSettings.erc_range),
     "until": None,
 }
 """The paper's run (250 programs, 50 generations) unless told otherwise; the task's
@@ -139,7 +139,7 @@ class GPKind:
         until = extra.pop("until", None)
         if until is not None:
             until = check_number("until", until, 1e-4, 1.0)
-        settings = GPRunSettings.from_values(
+        settings = GPSettings.from_values(
             {**extra, "task": task.name, "task_options": task.params, "seconds": task.seconds}
         )
         check_strategy(self, config)
@@ -208,8 +208,7 @@ class GPKind:
             raise SinewsError("replay individuals of one run at a time")
         settings = _settings(store.run(run_ids.pop()))
         programs = settings.parse([ind.genome for ind in individuals])
-        simulation = settings.simulation(record_hz=record_hz)
-        done = measure_programs(settings.task, programs, simulation, record=True)
+        done = measure_programs(settings, programs, Runtime(record_hz=record_hz), record=True)
         scene = scene_of(settings.task)
         return [
             Replay(
@@ -256,38 +255,10 @@ def default_phase_in(generations: int) -> dict[str, int]:
     return {"start": round(0.1 * generations), "full": max(0, generations - 1)}
 
 
-def scene_of(task: Task) -> TaskScene:
-    """The marks a task's picture needs, read from its goal and its touch bodies.
-
-    A goal along the floor (``root_x``) is an X there; a goal at a fixed point
-    is that point; a goal that is a site (the nose) marks the site. The site
-    that must reach it is marked too, and every touch body (a limbo bar)
-    gets a post from the floor.
-    """
-    goal, figure = task.goal, task.figure
-
-    def site(column: str) -> str | None:
-        name = column.partition("_")[2]
-        return name if name in figure.sites else None
-
-    fixed = [t for t in goal.target if not isinstance(t, str)]
-    model = figure.model()
-    posts = tuple(
-        (float(model.body(b).pos[0]), float(model.body(b).pos[2])) for b in figure.touch_bodies
-    )
-    return TaskScene(
-        cross=float(fixed[0]) if goal.tracked == ("root_x",) and fixed else None,
-        posts=posts,
-        target=(float(fixed[0]), float(fixed[1])) if len(fixed) == 2 else None,
-        target_site=site(str(goal.target[0])) if not fixed else None,
-        tracked_site=site(goal.tracked[0]),
-    )
-
-
-def _settings(info: RunInfo) -> GPRunSettings:
+def _settings(info: RunInfo) -> GPSettings:
     if not info.kind.startswith(f"{CONTROLLER}-"):
         raise SinewsError(f"run {info.id} evolves {info.kind}, not GP programs")
-    return GPRunSettings.from_values(info.config)
+    return GPSettings.from_values(info.config)
 
 
 def _task(figure: str, given: Mapping[str, Any]) -> Task:
