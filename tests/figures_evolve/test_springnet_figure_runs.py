@@ -18,7 +18,7 @@ from sinews.evolve import ProcessEvaluator, SerialEvaluator
 from sinews.experiments.figures import parse_keep
 from sinews.experiments.kinds import kind_of, run_kind
 from sinews.experiments.springnet.run import KIND as EXPERIMENT
-from sinews.experiments.springnet.score import SpringNetSettings
+from sinews.experiments.springnet.settings import SpringNetSettings
 from sinews.store import RunStore
 
 TINY = {"population": 10, "generations": 3, "seconds": 0.5, "seed": 3}

@@ -32,7 +32,8 @@ from sinews.benchmarks._measure import Measurement, best_time
 from sinews.control.springnet import SpringNetController, SpringNetGenome
 from sinews.evolve import SerialEvaluator
 from sinews.experiments.springnet.run import KIND
-from sinews.experiments.springnet.score import SpringNetSettings, simulate
+from sinews.experiments.springnet.settings import SpringNetSettings
+from sinews.experiments.springnet.simulate import simulate
 from sinews.figures import Figure, humanoid, luxo, require_mujoco, rollout, snake
 from sinews.store import RunStore
 

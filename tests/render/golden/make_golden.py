@@ -21,7 +21,8 @@ def make_inputs() -> None:
     """Simulate the two motions and save them next to this script."""
     from sinews.dancers import DancerGenome
     from sinews.experiments.dancers.simulate import dance
-    from sinews.experiments.springnet.score import SpringNetSettings, simulate
+    from sinews.experiments.springnet.settings import SpringNetSettings
+    from sinews.experiments.springnet.simulate import simulate
     from sinews.music import analyse
     from sinews.music.decode import Audio
     from sinews.music.demo import demo_song

@@ -1,1 +1,1 @@
-"""springnet"""
+"""Spring-net controllers for the figures (seed 001): settings, simulate, score, run."""

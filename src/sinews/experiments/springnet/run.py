@@ -28,12 +28,9 @@ from sinews.experiments.evolution import (
 from sinews.experiments.figures import FIGURES, make_figure, read_keep_file
 from sinews.experiments.kinds import KindOption, Replay, check_options, check_strategy
 from sinews.experiments.run_config import EvolutionConfig, build_config
-from sinews.experiments.springnet.score import (
-    TERMS,
-    SpringNetScorer,
-    SpringNetSettings,
-    simulate,
-)
+from sinews.experiments.springnet.score import SpringNetScorer
+from sinews.experiments.springnet.settings import TERMS, SpringNetSettings
+from sinews.experiments.springnet.simulate import simulate
 from sinews.render.figure import NetPanel
 from sinews.store import Individual, RunInfo, RunStore
 
