@@ -1,4 +1,12 @@
-"""The user-facing error type: anything the CLI or studio reports in one line."""
+"""The user-facing error type: anything the CLI or studio reports in one line.
+
+The rule (as pyribs keeps it): `SinewsError` and its subclasses are for what a
+*user* can cause — a bad file, option, song, setting or environment — and carry
+a one-line reason the CLI prints before exiting 2. Programmer misuse of the
+library (calling ``tell`` before ``ask``, wrong array shapes, a kind registered
+with a bad name) raises plain `ValueError`, `TypeError` or `RuntimeError`,
+which the CLI does not dress up: they are bugs, and show a traceback.
+"""
 
 from __future__ import annotations
 

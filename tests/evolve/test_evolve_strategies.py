@@ -42,22 +42,24 @@ def test_first_population_is_uniform_in_unit_box_without_parents() -> None:
 
 
 def test_misuse_is_refused_with_a_clear_error() -> None:
+    """Calling the cycle out of turn, or telling it a wrong-shaped fitness, is programmer
+    misuse (RuntimeError / ValueError), not a user's error (`SinewsError`)."""
     strategy = ga()
-    with pytest.raises(StrategyError, match="tell\\(\\) before ask"):
+    with pytest.raises(RuntimeError, match="tell\\(\\) before ask"):
         strategy.tell(np.zeros(P))
-    with pytest.raises(StrategyError, match="call ask"):
+    with pytest.raises(RuntimeError, match="call ask"):
         _ = strategy.parents
     strategy.ask()
-    with pytest.raises(StrategyError, match="ask\\(\\) called twice"):
+    with pytest.raises(RuntimeError, match="ask\\(\\) called twice"):
         strategy.ask()
-    with pytest.raises(StrategyError, match="one fitness per individual"):
+    with pytest.raises(ValueError, match="one fitness per individual"):
         strategy.tell(np.zeros(P + 1))
-    with pytest.raises(StrategyError, match="\\+inf"):
+    with pytest.raises(ValueError, match="\\+inf"):
         strategy.tell(np.full(P, np.inf))
-    with pytest.raises(StrategyError, match="numbers"):
+    with pytest.raises(ValueError, match="numbers"):
         strategy.tell(["a"] * P)
     strategy.tell(np.zeros(P))
-    with pytest.raises(StrategyError, match="tell\\(\\) called twice"):
+    with pytest.raises(RuntimeError, match="tell\\(\\) called twice"):
         strategy.tell(np.zeros(P))
 
 

@@ -218,7 +218,7 @@ class AltonGA(Strategy):
         Ties in fitness keep the lower index first; picks are ordered by fitness too.
         """
         if self._fitness is None or not self._told:
-            raise StrategyError("survivors() needs a told population")
+            raise RuntimeError("survivors() needs a told population")
         order = np.argsort(-self._fitness, kind="stable").astype(np.int64)
         picked = np.isin(order, self._picks)
         return np.concatenate([order[picked], order[~picked]])[: self.n_survivors]

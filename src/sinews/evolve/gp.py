@@ -315,7 +315,7 @@ class GPStrategy(AskTell[list[Program]]):
             StrategyError: no primitive set, an unknown option or a bad value.
         """
         if genomes.pset is None:
-            raise StrategyError("a GP strategy needs the run's primitive set")
+            raise ValueError("a GP strategy needs the run's primitive set")
         try:
             variation = GPVariation(**dict(options or {}))
         except TypeError:

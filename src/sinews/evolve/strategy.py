@@ -97,7 +97,7 @@ class AskTell(ABC, Generic[Population]):
     def _asked(self) -> Population:
         """The last population asked for; `StrategyError` before the first ``ask``."""
         if self._population is None:
-            raise StrategyError("no population yet: call ask() first")
+            raise RuntimeError("no population yet: call ask() first")
         return self._population
 
     @property
@@ -108,7 +108,7 @@ class AskTell(ABC, Generic[Population]):
         mutated individuals have one (column 0); crossover children have two.
         """
         if self._parents is None:
-            raise StrategyError("no population yet: call ask() first")
+            raise RuntimeError("no population yet: call ask() first")
         view = self._parents.view()
         view.flags.writeable = False
         return view
@@ -125,7 +125,7 @@ class AskTell(ABC, Generic[Population]):
             StrategyError: the previous population has not been told yet.
         """
         if self.awaiting_tell:
-            raise StrategyError("ask() called twice: tell() the last population first")
+            raise RuntimeError("ask() called twice: tell() the last population first")
         if self._population is None:
             population = self._first()
             parents = np.full((self.population_size, 2), -1, dtype=np.int64)
@@ -145,11 +145,11 @@ class AskTell(ABC, Generic[Population]):
     ) -> None:
         """Check and keep what a subclass's ``tell`` was given; `_breed` reads it."""
         if self._population is None:
-            raise StrategyError("tell() before ask(): there is no population to judge")
+            raise RuntimeError("tell() before ask(): there is no population to judge")
         if self._told:
-            raise StrategyError("tell() called twice for one population: ask() first")
+            raise RuntimeError("tell() called twice for one population: ask() first")
         if fitness is None and "fitness" in self.takes:
-            raise StrategyError(f"the {self.name} strategy must be told fitness")
+            raise RuntimeError(f"the {self.name} strategy must be told fitness")
         checked = None if fitness is None else self._check_fitness(fitness)
         self._picks = self._check_picks(picks)
         self._fitness = checked
@@ -160,14 +160,14 @@ class AskTell(ABC, Generic[Population]):
         try:
             values = np.array(fitness, dtype=np.float64)
         except (TypeError, ValueError):
-            raise StrategyError("fitness must be numbers") from None
+            raise ValueError("fitness must be numbers") from None
         if values.shape != (self.population_size,):
-            raise StrategyError(
+            raise ValueError(
                 f"tell() needs one fitness per individual ({self.population_size}), "
                 f"got shape {values.shape}"
             )
         if np.any(values == np.inf):
-            raise StrategyError("fitness must not be +inf")
+            raise ValueError("fitness must not be +inf")
         return np.where(np.isnan(values), -np.inf, values)
 
     def _check_picks(self, picks: npt.ArrayLike) -> IntArray:
@@ -241,10 +241,13 @@ class AskTell(ABC, Generic[Population]):
             self._population, self._parents = population, parents
         if state["told"]:
             fitness = state["fitness"]
-            self._record_tell(
-                fitness=None if fitness is None else decode_array(fitness, "fitness"),
-                picks=np.array(state["picks"] if "picks" in self.takes else [], dtype=np.int64),
-            )
+            try:
+                self._record_tell(
+                    fitness=None if fitness is None else decode_array(fitness, "fitness"),
+                    picks=np.array(state["picks"] if "picks" in self.takes else [], np.int64),
+                )
+            except (RuntimeError, ValueError) as exc:  # misuse in code, bad data in a file
+                raise StrategyError(f"checkpoint: {exc}") from None
 
     @abstractmethod
     def genomes(self, population: Population) -> Any:

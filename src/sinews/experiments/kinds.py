@@ -41,6 +41,7 @@ __all__ = [
     "register_run_kind",
     "run_kind",
     "run_kinds",
+    "run_of",
     "stored_kind",
 ]
 
@@ -177,7 +178,8 @@ class RunKind(Protocol):
     ) -> list[Replay]:
         """Simulate stored individuals of one run again, exactly as they were scored.
 
-        ``forces`` records per-node forces (the debug overlay) where the kind has them.
+        ``forces`` records per-node forces (the debug overlay) where the kind has them
+        (others ignore it; drawing refuses an overlay without forces).
         """
         ...
 
@@ -242,6 +244,14 @@ def check_options(options: Mapping[str, Any], known: Container[str], kind: str) 
     for name, value in options.items():
         if value is not None and name not in known:
             raise SinewsError(f"--{name.replace('_', '-')} does not apply to {kind} runs")
+
+
+def run_of(individuals: Sequence[Individual]) -> int:
+    """The one run ``individuals`` (at least one) belong to; `SinewsError` if several."""
+    run_ids = {ind.run_id for ind in individuals}
+    if len(run_ids) != 1:
+        raise SinewsError("replay individuals of one run at a time")
+    return run_ids.pop()
 
 
 def check_strategy(kind: RunKind, config: EvolutionConfig) -> None:

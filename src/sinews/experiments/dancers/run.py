@@ -32,7 +32,13 @@ from sinews.experiments.evolution import (
     continue_run,
     record_picks,
 )
-from sinews.experiments.kinds import KindOption, Replay, check_options, check_strategy
+from sinews.experiments.kinds import (
+    KindOption,
+    Replay,
+    check_options,
+    check_strategy,
+    run_of,
+)
 from sinews.experiments.run_config import EvolutionConfig
 from sinews.music.analysis import MAX_BPM, MIN_BPM, analyse_file
 from sinews.music.features import MusicFeatures
@@ -164,10 +170,7 @@ class DancerKind:
         """Dance stored dancers of one run again (one batch, at 60 fps), with the song."""
         if not individuals:
             return []
-        run_ids = {ind.run_id for ind in individuals}
-        if len(run_ids) != 1:
-            raise SinewsError("replay individuals of one run at a time")
-        info = store.run(run_ids.pop())
+        info = store.run(run_of(individuals))
         music, path = run_music(info)
         trajectories = dance(
             [DancerGenome(ind.genome) for ind in individuals],

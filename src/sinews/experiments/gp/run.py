@@ -23,7 +23,13 @@ from sinews.experiments.evolution import GenerationSummary, Strategies, continue
 from sinews.experiments.gp.score import GPScorer
 from sinews.experiments.gp.settings import GPSettings, Runtime
 from sinews.experiments.gp.simulate import measure_programs
-from sinews.experiments.kinds import KindOption, Replay, check_options, check_strategy
+from sinews.experiments.kinds import (
+    KindOption,
+    Replay,
+    check_options,
+    check_strategy,
+    run_of,
+)
 from sinews.experiments.run_config import ConfigError, EvolutionConfig, build_config
 from sinews.figures.tasks import Task, make_task
 from sinews.limits import check_number
@@ -199,14 +205,9 @@ class GPKind:
         forces: bool = False,
     ) -> list[Replay]:
         """Simulate stored programs of one run again (one batch), with the task's scene."""
-        if forces:
-            raise SinewsError("figures have no force overlay; it is for dancer runs")
         if not individuals:
             return []
-        run_ids = {ind.run_id for ind in individuals}
-        if len(run_ids) != 1:
-            raise SinewsError("replay individuals of one run at a time")
-        settings = _settings(store.run(run_ids.pop()))
+        settings = _settings(store.run(run_of(individuals)))
         programs = settings.parse([ind.genome for ind in individuals])
         done = measure_programs(settings, programs, Runtime(record_hz=record_hz), record=True)
         scene = scene_of(settings.task)

@@ -26,7 +26,13 @@ from sinews.experiments.evolution import (
     record_picks,
 )
 from sinews.experiments.figures import FIGURES, make_figure, read_keep_file
-from sinews.experiments.kinds import KindOption, Replay, check_options, check_strategy
+from sinews.experiments.kinds import (
+    KindOption,
+    Replay,
+    check_options,
+    check_strategy,
+    run_of,
+)
 from sinews.experiments.run_config import EvolutionConfig, build_config
 from sinews.experiments.springnet.score import SpringNetScorer
 from sinews.experiments.springnet.settings import TERMS, SpringNetSettings
@@ -169,14 +175,9 @@ class SpringNetKind:
         forces: bool = False,
     ) -> list[Replay]:
         """Simulate stored nets of one run again (one batch) with their nets' motion."""
-        if forces:
-            raise SinewsError("figures have no force overlay; it is for dancer runs")
         if not individuals:
             return []
-        run_ids = {ind.run_id for ind in individuals}
-        if len(run_ids) != 1:
-            raise SinewsError("replay individuals of one run at a time")
-        settings = _settings(store.run(run_ids.pop()))
+        settings = _settings(store.run(run_of(individuals)))
         genes = np.stack([np.asarray(ind.genome, dtype=np.float64) for ind in individuals])
         result, net = simulate(settings, genes, record_hz=record_hz)
         assert net is not None
