@@ -12,12 +12,11 @@ import numpy as np
 import pytest
 from starlette.testclient import TestClient
 from starlette.websockets import WebSocketDisconnect
-from studio_helpers import DATA, in_process_studio
-from test_studio_runs import decode_pack
 
 from sinews.studio.app import create_app
 from sinews.studio.service import StudioSettings, Worker
 from sinews.studio.songs import MAX_UPLOAD_BYTES
+from studio_helpers import DATA, decode_pack, in_process_studio
 
 HOME = "http://127.0.0.1:8765"
 JSON = {"Content-Type": "application/json"}

@@ -2,11 +2,8 @@
 
 from __future__ import annotations
 
-import json
-import struct
 from collections.abc import Iterator
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 import pytest
@@ -18,23 +15,7 @@ from sinews.studio.motion import Motion
 from sinews.studio.pack import encode_pack, millimetres
 from sinews.studio.runs import MAX_SECONDS, StudioError, StudioRuns
 from sinews.studio.songs import SongError, SongLibrary
-
-
-def decode_pack(data: bytes) -> tuple[dict[str, Any], dict[str, np.ndarray]]:
-    """The Python twin of static/js/pack.js."""
-    assert data[:4] == b"SNWP"
-    (length,) = struct.unpack("<I", data[4:8])
-    header = json.loads(data[8 : 8 + length])
-    base = 8 + length
-    arrays = {}
-    for name, spec in header["arrays"].items():
-        assert (base + spec["offset"]) % 8 == 0
-        count = int(np.prod(spec["shape"]))
-        arrays[name] = np.frombuffer(
-            data, dtype=np.dtype(spec["dtype"]).newbyteorder("<"), count=count,
-            offset=base + spec["offset"],
-        ).reshape(spec["shape"])  # fmt: skip
-    return header, arrays
+from studio_helpers import decode_pack
 
 
 @pytest.fixture

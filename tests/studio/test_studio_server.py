@@ -8,10 +8,10 @@ import time
 import urllib.request
 from urllib.parse import urlsplit
 
-from studio_helpers import StudioServer
 from websockets.sync.client import connect
 
 from sinews.studio.connections import HEADER_SECONDS
+from studio_helpers import StudioServer
 
 
 def _address(server: StudioServer) -> tuple[str, int]:

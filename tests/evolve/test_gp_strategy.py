@@ -6,10 +6,10 @@ import json
 
 import numpy as np
 import pytest
-from gp_helpers import make_pset, seeds
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from gp_helpers import make_pset, seeds
 from sinews.control.gp import program_depth, program_size
 from sinews.evolve import StrategyError
 from sinews.evolve.gp import GPStrategy, GPVariation, proportionate, tournament_select
