@@ -63,7 +63,7 @@ def test_out_of_turn_calls_are_refused() -> None:
 )
 def test_bad_options_are_refused(options: dict[str, object]) -> None:
     with pytest.raises(StrategyError):
-        _strategy(**options)
+        _strategy(0, 20, **options)
     with pytest.raises(StrategyError):
         _strategy(size=4, elites=4)
 

@@ -25,7 +25,7 @@ def runs(tmp_path: Path, studio_home: None) -> Iterator[StudioRuns]:
 
 
 def test_a_pack_carries_its_header_and_aligned_arrays() -> None:
-    arrays = {
+    arrays: dict[str, np.ndarray] = {
         "a": np.arange(5, dtype=np.int16),
         "b": np.ones((2, 3), np.float32),
         "c": np.array([True, False]),

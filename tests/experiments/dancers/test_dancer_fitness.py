@@ -26,7 +26,7 @@ from sinews.trajectory import Trajectory
 FPS = 60.0
 NAMES = ("head", "l_hand", "r_hand", "l_foot", "r_foot", "pelvis")
 REST = np.array([[0.0, 1.7], [-0.5, 1.2], [0.5, 1.2], [-0.2, 0.0], [0.2, 0.0], [0.0, 1.0]])
-EDGES = [(0, 5), (1, 5), (2, 5), (3, 5), (4, 5)]
+EDGES = np.array([(0, 5), (1, 5), (2, 5), (3, 5), (4, 5)])
 
 
 def motion(offsets: np.ndarray, beats: np.ndarray | None = None) -> Trajectory:
