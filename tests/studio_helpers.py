@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from starlette.applications import Starlette
 from starlette.testclient import TestClient
 
 from killed_runs import sinews_command
@@ -91,6 +92,15 @@ def in_process_studio(db: Path) -> Iterator[TestClient]:
     worker.call(lambda s: s.start())
     with TestClient(create_app(worker), base_url=HOME) as client:
         yield client
+
+
+def worker_of(client: TestClient) -> Worker:
+    """The worker behind an in-process studio (the app keeps it in its state)."""
+    app = client.app
+    assert isinstance(app, Starlette)
+    worker = app.state.worker
+    assert isinstance(worker, Worker)
+    return worker
 
 
 def decode_pack(data: bytes) -> tuple[dict[str, Any], dict[str, np.ndarray]]:
