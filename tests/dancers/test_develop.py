@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from sinews.dancers import DANCER_ENGINE, EDGE_NAMES, NODES, DancerGenome, develop
-from sinews.springmass import BodyBatch, simulate
+from sinews.springmass import Body, BodyBatch, SimState, simulate
 
 N_RANDOM = 300
 
@@ -43,8 +43,8 @@ def test_main_modifiers_shape_the_body() -> None:
     inverted = develop(base.replace(torso_triangularity=1.0))
     pear = develop(base.replace(torso_triangularity=0.0))
 
-    def ratio(body: object) -> float:
-        rest = body.rest  # type: ignore[attr-defined]
+    def ratio(body: Body) -> float:
+        rest = body.rest
         return float(rest[idx("r_shoulder"), 0] / rest[idx("r_hip"), 0])
 
     assert ratio(inverted) > 2.0 > 1.0 > ratio(pear)
@@ -59,7 +59,7 @@ def test_development_is_deterministic_and_colourful() -> None:
 
 
 @pytest.fixture(scope="module")
-def random_crowd() -> tuple[BodyBatch, np.ndarray, object]:
+def random_crowd() -> tuple[BodyBatch, np.ndarray, SimState]:
     rng = np.random.default_rng(2024)
     genomes = [DancerGenome.random(rng) for _ in range(N_RANDOM)]
     batch = BodyBatch.from_bodies([develop(g) for g in genomes], seeds=range(N_RANDOM))
@@ -68,12 +68,12 @@ def random_crowd() -> tuple[BodyBatch, np.ndarray, object]:
     return batch, rec.positions.astype(np.float64), state
 
 
-def test_random_genomes_never_blow_up(random_crowd: tuple[BodyBatch, np.ndarray, object]) -> None:
+def test_random_genomes_never_blow_up(random_crowd: tuple[BodyBatch, np.ndarray, SimState]) -> None:
     _, _, state = random_crowd
-    assert not state.failed.any()  # type: ignore[attr-defined]
+    assert not state.failed.any()
 
 
-def test_random_genomes_stand_upright(random_crowd: tuple[BodyBatch, np.ndarray, object]) -> None:
+def test_random_genomes_stand_upright(random_crowd: tuple[BodyBatch, np.ndarray, SimState]) -> None:
     batch, pos, _ = random_crowd
     head, pelvis = pos[:, :, idx("head")], pos[:, :, idx("pelvis")]
     feet = pos[:, :, [idx("l_foot"), idx("r_foot")]]
@@ -91,7 +91,7 @@ def test_random_genomes_stand_upright(random_crowd: tuple[BodyBatch, np.ndarray,
 
 
 def test_random_genomes_keep_their_shape(
-    random_crowd: tuple[BodyBatch, np.ndarray, object],
+    random_crowd: tuple[BodyBatch, np.ndarray, SimState],
 ) -> None:
     batch, pos, _ = random_crowd
     edges = batch.edges[0]

@@ -88,7 +88,8 @@ def test_a_responder_ignores_music_outside_its_bands() -> None:
     heard = dance([genome], 10.0, music=fake_music([lo]))[0]
     assert np.abs(heard.positions - silent.positions).max() > 0.05
     assert heard.triggers is not None and heard.triggers[:600:30, 0].all()
-    assert list(heard.trigger_nodes) == [NODES.index("r_hand")]  # type: ignore[arg-type]
+    assert heard.trigger_nodes is not None
+    assert list(heard.trigger_nodes) == [NODES.index("r_hand")]
 
 
 def test_species_move_a_hand_in_different_ways() -> None:

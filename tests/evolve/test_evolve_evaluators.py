@@ -94,9 +94,7 @@ def test_runs_are_identical_on_every_executor(
 def test_dask_connects_to_a_scheduler_address() -> None:
     from sinews.evolve import DaskEvaluator
 
-    with (
-        DaskEvaluator(workers=1) as local,
-        make_evaluator("dask", scheduler=local.address) as remote,
-    ):
+    local = DaskEvaluator(workers=1)
+    with local, make_evaluator("dask", scheduler=local.address) as remote:
         assert remote.n_workers == 1
         assert remote.map(operator.mul, 3, [1, 2, 3]) == [3, 6, 9]

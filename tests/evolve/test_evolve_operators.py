@@ -14,6 +14,7 @@ from sinews.evolve import (
     tournament,
     uniform_crossover,
 )
+from sinews.evolve.operators import CROSSOVERS, Crossover
 
 
 def test_mutation_rate_zero_changes_nothing_and_results_are_clipped() -> None:
@@ -52,17 +53,17 @@ def test_tournament_size_sets_the_pressure() -> None:
     genes=st.integers(1, 6),
     kept=st.integers(0, 11),
     seed=st.integers(0, 2**32 - 1),
-    crossover=st.sampled_from(["uniform", "blend", "none"]),
+    crossover=st.sampled_from(CROSSOVERS),
     rate=st.floats(0, 1),
 )
 def test_breed_makes_a_valid_population(
-    size: int, genes: int, kept: int, seed: int, crossover: str, rate: float
+    size: int, genes: int, kept: int, seed: int, crossover: Crossover, rate: float
 ) -> None:
     rng = np.random.default_rng(seed)
     population = rng.random((size, genes))
     order = rng.permutation(size).astype(np.int64)
     kept = min(kept, size - 1)
-    variation = Variation(crossover=crossover, crossover_rate=rate)  # type: ignore[arg-type]
+    variation = Variation(crossover=crossover, crossover_rate=rate)
     children, parents = breed(
         population, order, n_kept=kept, tournament_size=2, variation=variation, rng=rng
     )

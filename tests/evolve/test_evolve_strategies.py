@@ -12,10 +12,12 @@ from sinews.evolve import (
     GenomeSpace,
     HybridStrategy,
     InteractiveStrategy,
+    Strategy,
     StrategyError,
     make_strategy,
     restore_strategy,
 )
+from sinews.evolve.strategies import PickMode
 
 P, G = 10, 6
 
@@ -78,7 +80,7 @@ def test_misuse_is_refused_with_a_clear_error() -> None:
 )
 def test_bad_options_are_refused(options: dict[str, object], message: str) -> None:
     with pytest.raises(StrategyError, match=message):
-        ga(**options)
+        ga(0, **options)
 
 
 def test_bad_sizes_and_names_are_refused() -> None:
@@ -183,10 +185,10 @@ def test_bad_picks_are_refused(picks: list[float], message: str) -> None:
         strategy.tell(picks)
 
 
-def hybrid(mode: str) -> HybridStrategy:
+def hybrid(mode: PickMode) -> HybridStrategy:
     return HybridStrategy(
         population_size=P, genome_size=G, rng=np.random.default_rng(0), elites=2, pick_mode=mode
-    )  # type: ignore[arg-type]
+    )
 
 
 def test_hybrid_without_picks_is_the_ga() -> None:
@@ -227,6 +229,7 @@ def test_checkpoint_restores_exactly(name: str) -> None:
     )  # fmt: skip
     population = strategy.ask()
     pending = restore_strategy(strategy.to_bytes())
+    assert isinstance(strategy, Strategy) and isinstance(pending, Strategy)
     assert pending.awaiting_tell and pending.generation == 0
     np.testing.assert_array_equal(pending.population, population)
     tell = {"ga": lambda s: s.tell(sphere(population)),
@@ -235,6 +238,7 @@ def test_checkpoint_restores_exactly(name: str) -> None:
     tell(strategy)
     tell(pending)
     told = restore_strategy(strategy.to_bytes())
+    assert isinstance(told, Strategy)
     expected = strategy.ask()
     np.testing.assert_array_equal(pending.ask(), expected)
     np.testing.assert_array_equal(told.ask(), expected)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import subprocess
 import sys
+from collections.abc import Callable
 
 import numpy as np
 import pytest
@@ -44,7 +45,10 @@ CASES = [
 
 
 @pytest.mark.parametrize(("build", "joints", "base", "head"), CASES)
-def test_builtin_figures_have_the_documented_parts(build, joints, base, head) -> None:
+def test_builtin_figures_have_the_documented_parts(
+    build: Callable[[], Figure], joints: tuple[str, ...], base: tuple[str, ...],
+    head: tuple[str, ...],
+) -> None:  # fmt: skip
     figure = build()
     model = figure.model()
     assert figure.joints == joints
@@ -118,7 +122,7 @@ def test_from_mjcf_accepts_a_users_figure_and_its_own_output() -> None:
         (lambda x: x.replace("<mujoco", "<mujoco><oops", 1), "does not compile"),
     ],
 )
-def test_from_mjcf_rejects_unusable_models(change, message) -> None:
+def test_from_mjcf_rejects_unusable_models(change: Callable[[str], str], message: str) -> None:
     with pytest.raises(FigureError, match=message):
         Figure.from_mjcf(change(luxo_mjcf()), name="bad", base_bodies=["base"])
 
@@ -132,7 +136,7 @@ def test_from_mjcf_names_missing_bodies_and_bad_neutral() -> None:
         luxo().sensor_index("q_knee")
 
 
-def test_missing_mujoco_is_reported_at_use_not_at_import(monkeypatch) -> None:
+def test_missing_mujoco_is_reported_at_use_not_at_import(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setitem(sys.modules, "mujoco", None)
     with pytest.raises(SinewsError, match=r"sinews\[figures\]"):
         luxo()

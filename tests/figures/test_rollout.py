@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import numpy.typing as npt
 import pytest
@@ -152,7 +154,7 @@ def _subset(result: RolloutResult, rows: list[int]) -> RolloutResult:
     )
 
 
-def test_recording_converts_to_trajectories(lamp: Figure, tmp_path) -> None:
+def test_recording_converts_to_trajectories(lamp: Figure, tmp_path: Path) -> None:
     result = rollout(lamp, HoldPose(lamp.neutral), 3, 1.0, record=True, record_hz=60)
     assert result.qpos is not None and result.body_pos is not None
     assert result.frame_time is not None

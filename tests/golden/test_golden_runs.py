@@ -18,8 +18,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from golden_replays import replay_positions
 
+from golden_replays import replay_positions
 from killed_runs import sinews_command
 from sinews.store import RunStore
 

@@ -12,7 +12,9 @@ BPM = 120.0
 PERIOD_S = 60.0 / BPM
 
 
-def _swing(fps: float, seconds: float = 8.0, pause_at_s: float = 0.25, n_nodes: int = 5):
+def _swing(
+    fps: float, seconds: float = 8.0, pause_at_s: float = 0.25, n_nodes: int = 5
+) -> np.ndarray:
     """A body swinging side to side, pausing (speed 0) at ``pause_at_s + k * PERIOD_S``.
 
     Returns (T, N, 2) positions: x = cos(pi (t - pause) / period) for every node,

@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import pytest
-from render_helpers import make_dancer
 
+from render_helpers import make_dancer
 from sinews.trajectory import Trajectory
 
 

@@ -66,7 +66,8 @@ def test_svg_is_well_formed_and_escapes_text() -> None:
     assert tags.count("line") == 2  # the line and the arrow's shaft
     assert tags.count("polygon") == 2  # the polygon and the arrow's head
     assert "circle" in tags
-    assert root.find(f"{SVG_NS}text").text == "a<b & c"  # type: ignore[union-attr]
+    text = root.find(f"{SVG_NS}text")
+    assert text is not None and text.text == "a<b & c"
 
 
 def test_clear_forgets_svg_elements() -> None:

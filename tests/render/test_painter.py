@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from render_helpers import PALETTE, RESPONDER_NODES, make_dancer
 
+from render_helpers import PALETTE, RESPONDER_NODES, make_dancer
 from sinews.render import FramePainter, Overlay, RasterCanvas, RenderError, Style, make_painter
 from sinews.render.painter import frame_index, has_floor
 from sinews.trajectory import Trajectory

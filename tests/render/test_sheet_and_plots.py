@@ -7,8 +7,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 from PIL import Image
-from render_helpers import make_dancer
 
+from render_helpers import make_dancer
 from sinews.render import RenderError, Style, contact_sheet, plot_fitness
 from sinews.trajectory import Trajectory
 

@@ -10,8 +10,8 @@ import imageio_ffmpeg
 import numpy as np
 import pytest
 from PIL import Image, ImageSequence
-from render_helpers import probe, write_sine_wav
 
+from render_helpers import probe, write_sine_wav
 from sinews.render import (
     Canvas,
     Clips,

@@ -21,7 +21,7 @@ def scene_like(shapes: tuple[str, ...] = ("disc", "heart", "spike")) -> Trajecto
     return Trajectory(
         positions=positions,
         fps=60.0,
-        edges=[[0, 1], [1, 2]],
+        edges=np.array([[0, 1], [1, 2]]),
         node_names=("a", "b", "c"),
         radii=np.array([0.1, 0.25, 0.1], dtype=np.float32),
         colors=np.array([BLUE, RED, BLUE], dtype=np.uint8),
@@ -73,13 +73,15 @@ def test_a_heart_is_a_heart_and_an_ear_points_away_from_its_head() -> None:
 def test_visibility_and_shapes_survive_a_file_and_are_checked(tmp_path: Path) -> None:
     traj = scene_like()
     back = Trajectory.load(traj.save(tmp_path / "scene.npz"))
+    assert traj.node_visible is not None and traj.edge_visible is not None
     assert back.node_shapes == traj.node_shapes
     assert back.node_visible is not None and np.array_equal(back.node_visible, traj.node_visible)
     assert back.edge_visible is not None and np.array_equal(back.edge_visible, traj.edge_visible)
     with pytest.raises(TrajectoryError, match="unknown node shape 'star'"):
         scene_like(("disc", "star", "disc"))
     with pytest.raises(TrajectoryError, match="edge_visible must have shape"):
-        Trajectory(traj.positions, 60.0, traj.edges, traj.node_names, edge_visible=np.ones((2, 3)))
+        wrong = np.ones((2, 3), dtype=bool)
+        Trajectory(traj.positions, 60.0, traj.edges, traj.node_names, edge_visible=wrong)
 
 
 def test_the_scene_command_plays_draws_and_saves(tmp_path: Path) -> None:

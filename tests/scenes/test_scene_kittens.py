@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from sinews.scenes import KittenAvalanche, SceneInput
+from sinews.scenes import KittenAvalanche, SceneEvent, SceneInput
 from sinews.scenes.kitten import KITTEN_NODES, kitten
 
 
@@ -54,7 +54,7 @@ def test_a_dragged_kitten_flies_off_screen_and_counts() -> None:
     for k in range(31):  # 0.5 s, speeding up: a fling
         pointer = start + (goal - start) * (k / 30) ** 2
         scene.step(SceneInput(pointer=(pointer[0], pointer[1]), pressed=True))
-    events = []
+    events: list[SceneEvent] = []
     for _ in range(120):
         frame = scene.step(SceneInput(pointer=(goal[0], goal[1]), pressed=False))
         events += frame.events

@@ -2,27 +2,43 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 import pytest
 
-from sinews.springmass import Body, BodyBatch, BodyError, EngineParams, Status, simulate
+from sinews.springmass import (
+    Backend,
+    Body,
+    BodyBatch,
+    BodyError,
+    EngineParams,
+    Recording,
+    SimState,
+    Status,
+    simulate,
+)
 
 FREE = EngineParams(dt=0.01, gravity=0.0, floor=False)
 
 
-def two_nodes(**kwargs: object) -> Body:
-    options: dict[str, object] = {"mass": [1.0, 2.0], "strength": [50.0], "rest_length": [1.0]}
+def two_nodes(**kwargs: Any) -> Body:
+    """Two nodes joined by a stretched spring; ``kwargs`` go to `Body.build`."""
+    options: dict[str, Any] = {"mass": [1.0, 2.0], "strength": [50.0], "rest_length": [1.0]}
     options.update(kwargs)
-    return Body.build(["a", "b"], [[0.0, 0.0], [1.5, 0.0]], [(0, 1)], **options)  # type: ignore[arg-type]
+    return Body.build(["a", "b"], [[0.0, 0.0], [1.5, 0.0]], [(0, 1)], **options)
 
 
-def run(body: Body, steps: int, params: EngineParams = FREE, **kwargs: object):  # type: ignore[no-untyped-def]
+def run(
+    body: Body, steps: int, params: EngineParams = FREE, **kwargs: Any
+) -> tuple[SimState, Recording | None]:
+    """``body`` alone for ``steps`` frames; ``kwargs`` go to `simulate`."""
     batch = BodyBatch.from_bodies([body])
-    return simulate(batch, batch.initial_state(), steps, params, **kwargs)  # type: ignore[arg-type]
+    return simulate(batch, batch.initial_state(), steps, params, **kwargs)
 
 
 @pytest.mark.parametrize("backend", ["numba", "numpy"])
-def test_one_frame_matches_hand_computation(backend: str) -> None:
+def test_one_frame_matches_hand_computation(backend: Backend) -> None:
     # spring stretched by 0.5: force 50 * 0.5 = 25 N pulls a (+x) and b (-x)
     body = two_nodes(weight=[1.0, 1.0], drag=0.1)
     params = EngineParams(dt=0.01, gravity=10.0, floor=False)
@@ -83,9 +99,12 @@ def test_negative_weight_rises_and_zero_weight_floats() -> None:
 
 
 def test_attraction_pulls_only_the_attracted_node_and_only_within_reach() -> None:
-    pairs = {"attraction": [(0, 1)], "attraction_strength": [5.0]}
-    near = Body.build(["hand", "other"], [[0, 0], [1, 0]], [], attraction_reach=[2.0], **pairs)
-    far = Body.build(["hand", "other"], [[0, 0], [3, 0]], [], attraction_reach=[2.0], **pairs)
+    def pair(distance: float) -> Body:
+        rest = [[0.0, 0.0], [distance, 0.0]]
+        return Body.build(["hand", "other"], rest, [], attraction=[(0, 1)],
+                          attraction_strength=[5.0], attraction_reach=[2.0])  # fmt: skip
+
+    near, far = pair(1.0), pair(3.0)
     state, _ = run(near, 10)
     assert state.positions[0, 0, 0] > 0.0  # hand moved toward the other
     assert state.positions[0, 1, 0] == 1.0  # one-directional
@@ -113,7 +132,7 @@ def test_external_forces_per_step_and_constant() -> None:
 
 def random_body(rng: np.random.Generator, n: int) -> Body:
     n_edges = int(rng.integers(1, 3 * n))
-    edges = []
+    edges: list[tuple[int, int]] = []
     while len(edges) < n_edges:
         i, j = rng.integers(0, n, 2)
         if i != j:
@@ -206,11 +225,11 @@ def test_wiggle_depends_on_the_seed() -> None:
 
 
 @pytest.mark.parametrize("backend", ["numba", "numpy"])
-def test_a_blown_up_body_is_flagged_frozen_and_does_not_touch_the_others(backend: str) -> None:
+def test_a_blown_up_body_is_flagged_frozen_and_does_not_touch_the_others(backend: Backend) -> None:
     rng = np.random.default_rng(5)
     calm = [random_body(rng, 6) for _ in range(3)]
     # a stiff spring on a light node at a big step explodes
-    wild = Body.build(["a", "b"], [[0, 1], [0.5, 1]], [(0, 1)], mass=[1e-3, 1e-3],
+    wild = Body.build(["a", "b"], [[0.0, 1.0], [0.5, 1.0]], [(0, 1)], mass=[1e-3, 1e-3],
                       strength=[1e6], rest_length=[0.1])  # fmt: skip
     params = EngineParams(max_speed=50.0)
     mixed = BodyBatch.from_bodies([calm[0], wild, calm[1], calm[2]], seeds=[0, 1, 2, 3])

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
 
 import pytest
 
@@ -16,14 +15,14 @@ SETTINGS = ["--song", SONG, "--population", "6", "--generations", "24", "--seed"
             "--seconds", "3", "--phase-in", "2:6", "--executor", "serial"]  # fmt: skip
 
 
-def contents(db: Path) -> list[tuple[Any, ...]]:
+def contents(db: Path) -> list[object]:
     with RunStore(db) as store:
         (info,) = store.runs()
-        rows = [(info.status, info.generations)]
+        rows: list[object] = [(info.status, info.generations)]
         for ind in store.individuals(info.id):
             rows.append((ind.generation, ind.index, ind.genome.tobytes(), ind.seed, ind.fitness,
                          ind.terms, ind.failed, len(ind.parents)))  # fmt: skip
-        rows += [store.checkpoint(info.id, g) for g in range(info.generations)]  # type: ignore[misc]
+        rows += [store.checkpoint(info.id, g) for g in range(info.generations)]
     return rows
 
 

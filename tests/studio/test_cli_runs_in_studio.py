@@ -13,7 +13,6 @@ import urllib.request
 from pathlib import Path
 
 import numpy as np
-from studio_helpers import StudioServer
 
 from killed_runs import sinews_command
 from sinews.experiments.dancers.run import run_music
@@ -21,6 +20,7 @@ from sinews.music import analyse_file
 from sinews.store import RunStore
 from sinews.studio.service import StudioSettings, Worker
 from sinews.trajectory import Trajectory
+from studio_helpers import StudioServer
 
 
 def _sinews(env: dict[str, str], *args: str) -> subprocess.CompletedProcess[str]:

@@ -9,6 +9,7 @@ from pathlib import Path
 from typing import Any
 
 from playwright.sync_api import expect
+
 from studio_helpers import StudioServer
 
 LATEST = "(scenes.link.frames && scenes.link.frames.latest)"

@@ -12,12 +12,11 @@ import numpy as np
 import pytest
 from starlette.testclient import TestClient
 from starlette.websockets import WebSocketDisconnect
-from studio_helpers import DATA, in_process_studio
-from test_studio_runs import decode_pack
 
 from sinews.studio.app import create_app
 from sinews.studio.service import StudioSettings, Worker
 from sinews.studio.songs import MAX_UPLOAD_BYTES
+from studio_helpers import DATA, decode_pack, in_process_studio, worker_of
 
 HOME = "http://127.0.0.1:8765"
 JSON = {"Content-Type": "application/json"}
@@ -90,7 +89,7 @@ def test_the_same_export_asked_twice_at_once_is_made_and_recorded_once(
         answers = list(pool.map(lambda _: client.post(url), range(4)))
     assert [a.status_code for a in answers] == [200] * 4
     assert len({a.content for a in answers}) == 1 and answers[0].content[:6] == b"GIF89a"
-    worker: Worker = client.app.state.worker  # type: ignore[attr-defined]
+    worker = worker_of(client)
     paths = worker.call(lambda s: [m.path for m in s.store.media(run)])
     assert len(paths) == len(set(paths))
     exports = worker.settings.data_dir / "exports"
@@ -163,7 +162,7 @@ def test_a_dancer_on_stage_with_changed_genes_and_exports(client: TestClient) ->
     assert client.post(f"/api/dancers/{dancer['id']}/export.exe").status_code == 404
     gif = client.post(f"/api/dancers/{dancer['id']}/export.gif")
     assert gif.content[:6] == b"GIF89a" and gif.headers["content-type"] == "image/gif"
-    worker: Worker = client.app.state.worker  # type: ignore[attr-defined]
+    worker = worker_of(client)
     kinds = worker.call(lambda s: [m.kind for m in s.store.media(run)])
     assert "gif" in kinds
     sheet = client.post(f"/api/runs/{run}/generations/0/sheet.png?frame=60")
@@ -175,7 +174,7 @@ def test_a_dancer_on_stage_with_changed_genes_and_exports(client: TestClient) ->
 def test_uploads_are_checked_by_content_and_kept_under_generated_names(
     client: TestClient,
 ) -> None:
-    worker: Worker = client.app.state.worker  # type: ignore[attr-defined]
+    worker = worker_of(client)
     songs = worker.settings.data_dir / "songs"
     junk = client.post(
         "/api/songs", content=b"ID3\x03" + bytes(5000), headers={"X-Song-Name": "a.mp3"}

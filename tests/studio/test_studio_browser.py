@@ -11,6 +11,7 @@ from typing import Any
 import imageio_ffmpeg
 import pytest
 from playwright.sync_api import expect
+
 from studio_helpers import DATA, StudioServer
 
 INK = """(selector) => [...document.querySelectorAll(selector)].map((canvas) => {

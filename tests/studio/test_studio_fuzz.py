@@ -15,6 +15,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from starlette.testclient import TestClient
+
 from studio_helpers import in_process_studio
 
 HOME = "http://127.0.0.1:8765"

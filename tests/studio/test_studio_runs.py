@@ -2,11 +2,8 @@
 
 from __future__ import annotations
 
-import json
-import struct
 from collections.abc import Iterator
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 import pytest
@@ -18,23 +15,7 @@ from sinews.studio.motion import Motion
 from sinews.studio.pack import encode_pack, millimetres
 from sinews.studio.runs import MAX_SECONDS, StudioError, StudioRuns
 from sinews.studio.songs import SongError, SongLibrary
-
-
-def decode_pack(data: bytes) -> tuple[dict[str, Any], dict[str, np.ndarray]]:
-    """The Python twin of static/js/pack.js."""
-    assert data[:4] == b"SNWP"
-    (length,) = struct.unpack("<I", data[4:8])
-    header = json.loads(data[8 : 8 + length])
-    base = 8 + length
-    arrays = {}
-    for name, spec in header["arrays"].items():
-        assert (base + spec["offset"]) % 8 == 0
-        count = int(np.prod(spec["shape"]))
-        arrays[name] = np.frombuffer(
-            data, dtype=np.dtype(spec["dtype"]).newbyteorder("<"), count=count,
-            offset=base + spec["offset"],
-        ).reshape(spec["shape"])  # fmt: skip
-    return header, arrays
+from studio_helpers import decode_pack
 
 
 @pytest.fixture
@@ -44,7 +25,7 @@ def runs(tmp_path: Path, studio_home: None) -> Iterator[StudioRuns]:
 
 
 def test_a_pack_carries_its_header_and_aligned_arrays() -> None:
-    arrays = {
+    arrays: dict[str, np.ndarray] = {
         "a": np.arange(5, dtype=np.int16),
         "b": np.ones((2, 3), np.float32),
         "c": np.array([True, False]),

@@ -8,10 +8,11 @@ import time
 import urllib.request
 from urllib.parse import urlsplit
 
-from studio_helpers import StudioServer
 from websockets.sync.client import connect
+from websockets.typing import Origin
 
 from sinews.studio.connections import HEADER_SECONDS
+from studio_helpers import StudioServer
 
 
 def _address(server: StudioServer) -> tuple[str, int]:
@@ -44,7 +45,7 @@ def test_live_socket_answers_binary_and_absurd_messages_and_stays_open(
     server: StudioServer,
 ) -> None:
     host, port = _address(server)
-    origin = f"http://{host}:{port}"
+    origin = Origin(f"http://{host}:{port}")
     with connect(f"ws://{host}:{port}/api/live", origin=origin, open_timeout=30) as live:
         for message in (b"\x00\x01binary", "9" * 5000, "[" * 5000, '{"op": "step", "frame": 1}',
                         '{"op": "start", "dancer": ' + "9" * 5000 + "}"):  # fmt: skip

@@ -47,7 +47,7 @@ def make_inputs() -> None:
 
 if __name__ == "__main__":
     make_inputs()
-    sys.path.insert(0, str(HERE.parent))
-    from test_golden import write_pictures
+    sys.path.insert(0, str(HERE.parents[1]))  # tests/, where the test folders are packages
+    from render.test_golden import write_pictures
 
     write_pictures(HERE)

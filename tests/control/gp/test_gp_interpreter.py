@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from gp_helpers import TERMINALS, make_pset, population, seeds
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from gp_helpers import TERMINALS, make_pset, population, seeds
 from sinews.control.gp import (
     GPController,
     GPError,

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+
 from gp_helpers import stored
 
 pytest.importorskip("mujoco")

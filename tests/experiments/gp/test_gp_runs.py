@@ -7,8 +7,8 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from gp_helpers import stored
 
+from gp_helpers import stored
 from killed_runs import kill_when, stored_generations
 
 pytest.importorskip("mujoco")

@@ -6,10 +6,10 @@ import json
 
 import numpy as np
 import pytest
-from gp_helpers import make_pset, seeds
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from gp_helpers import make_pset, seeds
 from sinews.control.gp import program_depth, program_size
 from sinews.evolve import StrategyError
 from sinews.evolve.gp import GPStrategy, GPVariation, proportionate, tournament_select
@@ -63,7 +63,7 @@ def test_out_of_turn_calls_are_refused() -> None:
 )
 def test_bad_options_are_refused(options: dict[str, object]) -> None:
     with pytest.raises(StrategyError):
-        _strategy(**options)
+        _strategy(0, 20, **options)
     with pytest.raises(StrategyError):
         _strategy(size=4, elites=4)
 

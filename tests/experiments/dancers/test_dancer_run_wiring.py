@@ -21,7 +21,7 @@ from sinews.experiments.run_config import EvolutionConfig, load_toml
 from sinews.store import RunStore, generation_stats
 from sinews.trajectory import Trajectory
 
-SONG = str(Path(__file__).resolve().parents[1] / "data" / "loop_mika.flac")
+SONG = str(Path(__file__).resolve().parents[2] / "data" / "loop_mika.flac")
 
 
 @pytest.fixture(autouse=True)

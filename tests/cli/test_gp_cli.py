@@ -128,7 +128,7 @@ def test_a_limbo_run_puts_the_bar_at_four_fifths_of_the_lamp_and_draws_it(
     assert sum(along) >= 3  # the post (the lamp may pass in front of a part of it)
     bar = view.to_px(np.array([x, top]))
     assert tuple(pixels[round(bar[1]), round(bar[0])]) not in (POST, BACKGROUND)  # the bar
-    assert shows(pixels, view, (scene.cross, 0.0), RED, within=8)
+    assert scene.cross is not None and shows(pixels, view, (scene.cross, 0.0), RED, within=8)
 
 
 @pytest.mark.parametrize(
@@ -136,7 +136,7 @@ def test_a_limbo_run_puts_the_bar_at_four_fifths_of_the_lamp_and_draws_it(
     [("nose", [], "nose"), ("reach", ["--target", "0.45,1.3"], [0.45, 1.3])],
 )
 def test_humanoid_runs_draw_the_target_and_the_hand(
-    task: str, args: list[str], target: object, tmp_path: Path,
+    task: str, args: list[str], target: str | list[float], tmp_path: Path,
     capsys: pytest.CaptureFixture[str],
 ) -> None:  # fmt: skip
     db = tmp_path / "runs.db"

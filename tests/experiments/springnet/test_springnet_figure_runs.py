@@ -73,6 +73,7 @@ def test_a_run_stores_the_papers_generations(tmp_path: Path) -> None:
         assert (np.array([i.fitness for i in second]) >= 0).all()  # |x_end - x_start|
         best = store.best(run)
         (replay,) = EXPERIMENT.replay(store, [best])
+        assert replay.distance is not None
         assert abs(replay.distance) == best.fitness  # replayed exactly as scored
         assert replay.panel is not None and replay.trajectory.qpos is not None
         assert replay.panel.positions.shape == (replay.trajectory.n_frames, 4)

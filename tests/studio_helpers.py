@@ -1,15 +1,20 @@
-"""Running ``sinews studio`` in a subprocess for the browser tests."""
+"""The studio tests' helpers: ``sinews studio`` in a subprocess or in process, pack decoding."""
 
 from __future__ import annotations
 
+import json
 import queue
 import signal
+import struct
 import subprocess
 import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
+from typing import Any
 
+import numpy as np
+from starlette.applications import Starlette
 from starlette.testclient import TestClient
 
 from killed_runs import sinews_command
@@ -21,7 +26,7 @@ CHROMIUM_ARGS = [
     "--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
     "--disable-component-update", "--no-first-run", "--disable-sync", "--disable-quic",
 ]  # fmt: skip
-DATA = Path(__file__).resolve().parents[1] / "data"
+DATA = Path(__file__).resolve().parent / "data"
 START_TIMEOUT = 90.0
 HOME = "http://127.0.0.1:8765"
 
@@ -87,3 +92,29 @@ def in_process_studio(db: Path) -> Iterator[TestClient]:
     worker.call(lambda s: s.start())
     with TestClient(create_app(worker), base_url=HOME) as client:
         yield client
+
+
+def worker_of(client: TestClient) -> Worker:
+    """The worker behind an in-process studio (the app keeps it in its state)."""
+    app = client.app
+    assert isinstance(app, Starlette)
+    worker = app.state.worker
+    assert isinstance(worker, Worker)
+    return worker
+
+
+def decode_pack(data: bytes) -> tuple[dict[str, Any], dict[str, np.ndarray]]:
+    """The Python twin of static/js/pack.js."""
+    assert data[:4] == b"SNWP"
+    (length,) = struct.unpack("<I", data[4:8])
+    header = json.loads(data[8 : 8 + length])
+    base = 8 + length
+    arrays = {}
+    for name, spec in header["arrays"].items():
+        assert (base + spec["offset"]) % 8 == 0
+        count = int(np.prod(spec["shape"]))
+        arrays[name] = np.frombuffer(
+            data, dtype=np.dtype(spec["dtype"]).newbyteorder("<"), count=count,
+            offset=base + spec["offset"],
+        ).reshape(spec["shape"])  # fmt: skip
+    return header, arrays

@@ -3,10 +3,10 @@
 from __future__ import annotations
 
 import numpy as np
-from gp_helpers import make_pset, population, seeds
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from gp_helpers import make_pset, population, seeds
 from sinews.control.gp import (
     Limits,
     Program,

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -26,7 +27,7 @@ from sinews.trajectory import Trajectory
 FPS = 60.0
 NAMES = ("head", "l_hand", "r_hand", "l_foot", "r_foot", "pelvis")
 REST = np.array([[0.0, 1.7], [-0.5, 1.2], [0.5, 1.2], [-0.2, 0.0], [0.2, 0.0], [0.0, 1.0]])
-EDGES = [(0, 5), (1, 5), (2, 5), (3, 5), (4, 5)]
+EDGES = np.array([(0, 5), (1, 5), (2, 5), (3, 5), (4, 5)])
 
 
 def motion(offsets: np.ndarray, beats: np.ndarray | None = None) -> Trajectory:
@@ -97,8 +98,8 @@ def test_score_chunk_computes_named_terms_and_flags_failures(
     assert np.isfinite(scores.terms).all()
     real_dance = dancer_fitness.dance
 
-    def failing(*args: object, **kwargs: object) -> list[Trajectory]:
-        trajs = real_dance(*args, **kwargs)  # type: ignore[arg-type]
+    def failing(*args: Any, **kwargs: Any) -> list[Trajectory]:
+        trajs = real_dance(*args, **kwargs)
         return [dataclasses.replace(trajs[0], failed=True), *trajs[1:]]
 
     monkeypatch.setattr(dancer_fitness, "dance", failing)

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from gp_helpers import TERMINALS, make_pset, population, seeds
 from hypothesis import given, settings
 
+from gp_helpers import TERMINALS, make_pset, population, seeds
 from sinews.control.gp import (
     GPError,
     PrimitiveSet,
