@@ -40,6 +40,7 @@ __all__ = [
     "Task",
     "TaskMeter",
     "Wave",
+    "all_tasks",
     "humanoid_reach",
     "luxo_hop",
     "luxo_limbo",
@@ -369,15 +370,23 @@ TASKS: Mapping[str, Callable[..., Task]] = {
 """The built-in tasks by name."""
 
 
+def all_tasks() -> dict[str, Callable[..., Task]]:
+    """The planar tasks (`TASKS`) and the 3D ones (`sinews.figures.tasks3d.TASKS_3D`)."""
+    from sinews.figures.tasks3d import TASKS_3D  # it builds on this module
+
+    return {**TASKS, **TASKS_3D}
+
+
 def make_task(name: str, **options: Any) -> Task:
     """A built-in task by name, e.g. ``make_task("luxo-hop", target=1.5)``.
 
     Raises:
         FigureError: unknown task or options.
     """
-    if name not in TASKS:
-        raise FigureError(f"no task called {name!r}; choose from {', '.join(TASKS)}")
+    tasks = all_tasks()
+    if name not in tasks:
+        raise FigureError(f"no task called {name!r}; choose from {', '.join(tasks)}")
     try:
-        return TASKS[name](**options)
+        return tasks[name](**options)
     except TypeError as exc:
         raise FigureError(f"{name}: {exc}") from None
