@@ -73,7 +73,7 @@ def document3d(
   <statistic extent="{fmt(extent)}" center="0 0 0.5"/>
   <visual>
     <global offwidth="1280" offheight="720"/>
-    <quality shadowsize="2048"/>
+    <quality shadowsize="1024"/>
     <headlight ambient="0.35 0.35 0.35" diffuse="0.5 0.5 0.5" specular="0.1 0.1 0.1"/>
   </visual>
   <asset>
@@ -81,7 +81,7 @@ def document3d(
              width="256" height="256"/>
     <texture name="grid" type="2d" builtin="checker" rgb1="0.86 0.86 0.84" rgb2="0.74 0.74 0.72"
              width="512" height="512"/>
-    <material name="floor" texture="grid" texrepeat="10 10" texuniform="true" reflectance="0.05"/>
+    <material name="floor" texture="grid" texrepeat="10 10" texuniform="true"/>
     <material name="figure" rgba="0.93 0.6 0.25 1"/>
     <material name="accent" rgba="0.3 0.45 0.75 1"/>
   </asset>
