@@ -28,6 +28,8 @@ from sinews.errors import SinewsError
 from sinews.evolve import Evaluator
 from sinews.experiments.evolution import GenerationSummary
 from sinews.figures import Figure, RolloutResult, humanoid, luxo, snake
+from sinews.figures.humanoid3d import humanoid3d
+from sinews.figures.luxo3d import luxo3d
 from sinews.render.figure import NetPanel, TaskScene
 from sinews.store import Individual, RunInfo, RunStore
 from sinews.trajectory import Trajectory
@@ -46,8 +48,14 @@ __all__ = [
     "read_keep_file",
 ]
 
-FIGURES: dict[str, Callable[[], Figure]] = {"snake": snake, "luxo": luxo, "humanoid": humanoid}
-"""The built-in figures by name."""
+FIGURES: dict[str, Callable[[], Figure]] = {
+    "snake": snake,
+    "luxo": luxo,
+    "humanoid": humanoid,
+    "luxo3d": luxo3d,
+    "humanoid3d": humanoid3d,
+}
+"""The built-in figures by name (``luxo3d`` and ``humanoid3d`` are 3D: a free root)."""
 
 FIGURE_EXPERIMENTS: dict[str, str] = {
     "springnet": "sinews.experiments.springnet_figures",
