@@ -36,7 +36,7 @@ def test_every_3d_task_builds_with_4_to_10_driven_joints(name: str) -> None:
     assert task.figure.root == "free"
     n = len(task.joints)
     assert (3 if name.startswith("luxo3d") else 4) <= n <= 10
-    weights, offset = task.input_map()
+    weights, _ = task.input_map()
     assert weights.shape == (task.figure.n_sensors, len(task.terminals))
 
 
@@ -49,7 +49,7 @@ def test_the_lamp_sees_the_goal_in_its_heading_frame() -> None:
 
 
 def test_hop_targets_are_checked() -> None:
-    with pytest.raises(FigureError, match="0.3 to 2 m"):
+    with pytest.raises(FigureError, match=r"0\.3 to 2 m"):
         make_task("luxo3d-hop", target=(2.0, 1.0))
     with pytest.raises(FigureError, match="x,y"):
         make_task("luxo3d-hop", target=(1.0,))

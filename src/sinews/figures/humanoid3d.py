@@ -148,8 +148,9 @@ def humanoid3d_mjcf(shape: Humanoid3DShape = Humanoid3DShape(), *, friction: flo
     heel, toe, foot_half, height, foot_mass = shape.foot
     legs, arms = [], []
     for side, sign in (("_l", 1.0), ("_r", -1.0)):
+        box = fmt((heel + toe) / 2, foot_half, height / 2)
         foot = (
-            f'<geom name="foot{side}" type="box" size="{fmt((heel + toe) / 2, foot_half, height / 2)}"'
+            f'<geom name="foot{side}" type="box" size="{box}"'
             f' pos="{fmt((toe - heel) / 2, 0, -height / 2)}" mass="{fmt(foot_mass)}"/>'
         )
         legs.append(f"""<body name="thigh{side}" pos="{fmt(0, sign * shape.hip_width, 0)}">
@@ -185,6 +186,7 @@ def humanoid3d_mjcf(shape: Humanoid3DShape = Humanoid3DShape(), *, friction: flo
     pelvis_half, pelvis_radius, pelvis_mass = shape.pelvis
     head_radius, head_mass = shape.head
     hip_height = height + shape.shin[0] + shape.thigh[0]
+    chest_z = torso_length - chest_radius
     nose_at = (head_radius * 0.95, 0, head_radius)
     body = f"""<body name="pelvis" pos="0 0 {fmt(hip_height)}">
       {FREE_ROOT}
@@ -196,7 +198,7 @@ def humanoid3d_mjcf(shape: Humanoid3DShape = Humanoid3DShape(), *, friction: flo
               fromto="0 0 {fmt(torso_radius)} 0 0 {fmt(torso_length - chest_radius)}"
               mass="{fmt(torso_mass)}"/>
         <geom name="chest" type="capsule" size="{fmt(chest_radius)}" {TOUCHABLE} mass="0"
-              fromto="{fmt(0, -chest_half, torso_length - chest_radius)} {fmt(0, chest_half, torso_length - chest_radius)}"/>
+              fromto="{fmt(0, -chest_half, chest_z, 0, chest_half, chest_z)}"/>
         <body name="head" pos="0 0 {fmt(torso_length + shape.neck)}">
           {_joints(shape, ("neck_y", "neck_z"), "")}
           <geom name="head" type="sphere" size="{fmt(head_radius)}" pos="0 0 {fmt(head_radius)}"

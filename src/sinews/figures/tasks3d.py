@@ -262,9 +262,7 @@ def humanoid3d_touch(
                         {"target": list(point)})  # fmt: skip
 
 
-def humanoid3d_point(
-    target: Sequence[float] = (2.0, -1.5, 2.2), *, seconds: float = 3.0
-) -> Task:
+def humanoid3d_point(target: Sequence[float] = (2.0, -1.5, 2.2), *, seconds: float = 3.0) -> Task:
     """Point the right arm at a point (x, y, z): the angle at the shoulder between the
     fingertips and the target must end within 5° and stay (``still``). Driven: the right
     arm's four hinges and the waist's turn (5)."""

@@ -38,11 +38,12 @@ if TYPE_CHECKING:
     import mujoco
 
 __all__ = [
-    "GLBackendError",
     "FollowCamera",
+    "GLBackendError",
     "MujocoView",
     "gl_backend",
     "render_3d",
+    "render_recordings_3d",
     "save_mp4_3d",
     "save_png_3d",
     "save_strobe_3d",
@@ -302,7 +303,8 @@ def default_camera(model: mujoco.MjModel, qpos: npt.ArrayLike) -> FollowCamera:
     keep = None
     target = int(mj.mj_name2id(model, mj.mjtObj.mjOBJ_SITE, "target"))
     if target >= 0:
-        keep = tuple(float(v) for v in data.site_xpos[target])
+        x, y, z = (float(v) for v in data.site_xpos[target])
+        keep = (x, y, z)
     return FollowCamera(distance=1.5 * tall + 1.0, height=0.5 * tall, keep=keep)
 
 
@@ -403,6 +405,46 @@ def render_3d(
     if strobe:
         return save_strobe_3d(model, qpos, path, **options)
     return save_png_3d(model, qpos, path, **options)
+
+
+def render_recordings_3d(
+    model: mujoco.MjModel,
+    recordings: Sequence[npt.ArrayLike],
+    path: str | os.PathLike[str],
+    *,
+    fps: float,
+    width: int = 640,
+) -> Path:
+    """Stored runs' replays: ``.mp4`` plays the recordings one after another (e.g. each
+    generation's best: the camera starts afresh on each), ``.png`` is a strobe of one.
+
+    Args:
+        model: the task's model (its figure with the scene).
+        recordings: (T, nq) qpos frames, one per replayed individual.
+        path: ``.mp4`` or ``.png``.
+        fps: frame rate of the recordings.
+        width: pixels (height: 9/16 of it, rounded to even).
+    """
+    size = (width - width % 2, round(width * 9 / 32) * 2)
+    suffix = suffix_of(path, (".png", ".mp4"))
+    frames = [_recording(model, q) for q in recordings]
+    if not frames:
+        raise RenderError("nothing to render")
+    if suffix == ".png":
+        if len(frames) != 1:
+            raise RenderError("a .png strobe shows one individual; use .mp4 for several")
+        return save_strobe_3d(model, frames[0], path, size=size)
+    from sinews.render.ffmpeg import encode_mp4
+
+    camera = default_camera(model, frames[0][0])
+
+    def every_frame(view: MujocoView) -> Iterator[Image]:
+        for recording in frames:
+            yield from view.frames(recording, fps)
+
+    with MujocoView(model, *size, camera=camera) as view, atomic_output(path) as tmp:
+        encode_mp4(every_frame(view), tmp, size=size, fps=fps)
+    return Path(path)
 
 
 def _recording(model: mujoco.MjModel, qpos: npt.ArrayLike) -> FloatArray:
