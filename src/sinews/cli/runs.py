@@ -319,6 +319,16 @@ def _render_figures(
     else:
         chosen = _generation_bests(store, run, generations)
     replays = experiment.replay(store, chosen)
+    if replays[0].figure.root == "free":  # 3D figures: MuJoCo's own renderer, offscreen
+        from sinews.render.mujoco_view import render_recordings_3d
+
+        recordings = [r.trajectory.qpos for r in replays if r.trajectory.qpos is not None]
+        path = render_recordings_3d(replays[0].figure.model(), recordings, output,
+                                    fps=replays[0].trajectory.fps, width=size)  # fmt: skip
+        store.add_media(run, path, kind=path.suffix.lstrip(".").lower(),
+                        individual_id=chosen[0].id if len(chosen) == 1 else None)  # fmt: skip
+        typer.echo(f"wrote {path} (individual {', '.join(str(c.id) for c in chosen[:4])})")
+        return
     pixels = (size, 3 * size // 4)
     geometry = FigureGeometry.of(replays[0].figure)
     titles = [
