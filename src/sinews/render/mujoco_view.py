@@ -13,8 +13,8 @@ the floor, the target ball, the limbo bar) are parts of the task's MJCF, so
 what is drawn is what was simulated. `FollowCamera` follows the figure's root
 smoothly and keeps a point (the target) in the frame.
 
-Measured on 2 cores (``sinews bench``-style, see docs/figures3d.md): about
-40–80 ms per 640×360 frame with shadows.
+Measured on 2 cores shared with other jobs (docs/figures3d.md): a 640×360
+frame of the lamp 88 ms with shadows, 44 without; of the humanoid 211 and 60.
 """
 
 from __future__ import annotations
@@ -309,9 +309,9 @@ def default_camera(model: mujoco.MjModel, qpos: npt.ArrayLike) -> FollowCamera:
 
 
 def _views(model: mujoco.MjModel, qpos: FloatArray, size: tuple[int, int],
-           camera: FollowCamera | None) -> MujocoView:  # fmt: skip
+           camera: FollowCamera | None, shadows: bool = True) -> MujocoView:  # fmt: skip
     chosen = camera if camera is not None else default_camera(model, qpos[0])
-    return MujocoView(model, size[0], size[1], camera=chosen)
+    return MujocoView(model, size[0], size[1], camera=chosen, shadows=shadows)
 
 
 def save_png_3d(
@@ -322,13 +322,14 @@ def save_png_3d(
     frame: int = -1,
     size: tuple[int, int] = (640, 360),
     camera: FollowCamera | None = None,
+    shadows: bool = True,
 ) -> Path:
     """One frame (default the last) of a (T, nq) recording as a PNG."""
     from PIL import Image as PILImage
 
     suffix_of(path, (".png",))
     frames = _recording(model, qpos)
-    with _views(model, frames, size, camera) as view:
+    with _views(model, frames, size, camera, shadows) as view:
         image = view.frame(frames[frame])
     with atomic_output(path) as tmp:
         PILImage.fromarray(image).save(tmp, format="PNG")
@@ -343,6 +344,7 @@ def save_strobe_3d(
     count: int = 8,
     size: tuple[int, int] = (960, 540),
     camera: FollowCamera | None = None,
+    shadows: bool = True,
 ) -> Path:
     """``count`` poses spread over a recording in one PNG, earlier ones faded; the camera
     frames the whole path (it looks at the middle of where the root went)."""
@@ -359,7 +361,7 @@ def save_strobe_3d(
     span = float(np.ptp(path_xy, axis=0).max())
     chosen = replace(chosen, keep=(float(middle[0]), float(middle[1]), 0.0), keep_share=1.0,
                      lag=0.0, distance=chosen.distance + 0.8 * span)  # fmt: skip
-    with MujocoView(model, size[0], size[1], camera=chosen) as view:
+    with MujocoView(model, size[0], size[1], camera=chosen, shadows=shadows) as view:
         # the camera looks at the middle of the path: aim from the first pose
         image = view.frame(frames[picks[-1]], ghosts=[frames[k] for k in picks[:-1]])
     with atomic_output(path) as tmp:
@@ -375,15 +377,20 @@ def save_mp4_3d(
     fps: float,
     size: tuple[int, int] = (640, 360),
     camera: FollowCamera | None = None,
+    shadows: bool = True,
 ) -> Path:
-    """A (T, nq) recording at ``fps`` frames per second as an H.264 MP4, the camera following."""
+    """A (T, nq) recording at ``fps`` frames per second as an H.264 MP4, the camera following.
+
+    Shadows cost most of a software-rendered frame (640×360, 2 busy cores: the
+    humanoid 211 ms with, 60 ms without; the lamp 88 and 44).
+    """
     from sinews.render.ffmpeg import encode_mp4
 
     suffix_of(path, (".mp4",))
     if size[0] % 2 or size[1] % 2:
         raise RenderError(f"H.264 needs even dimensions, got {size[0]}x{size[1]}")
     frames = _recording(model, qpos)
-    with _views(model, frames, size, camera) as view, atomic_output(path) as tmp:
+    with _views(model, frames, size, camera, shadows) as view, atomic_output(path) as tmp:
         encode_mp4(view.frames(frames, fps), tmp, size=size, fps=fps)
     return Path(path)
 
@@ -414,9 +421,12 @@ def render_recordings_3d(
     *,
     fps: float,
     width: int = 640,
+    shadows: bool | None = None,
 ) -> Path:
     """Stored runs' replays: ``.mp4`` plays the recordings one after another (e.g. each
     generation's best: the camera starts afresh on each), ``.png`` is a strobe of one.
+    Shadows (None: on for one recording, off for several, where they would triple the
+    time of a learning video).
 
     Args:
         model: the task's model (its figure with the scene).
@@ -433,7 +443,7 @@ def render_recordings_3d(
     if suffix == ".png":
         if len(frames) != 1:
             raise RenderError("a .png strobe shows one individual; use .mp4 for several")
-        return save_strobe_3d(model, frames[0], path, size=size)
+        return save_strobe_3d(model, frames[0], path, size=size, shadows=shadows is not False)
     from sinews.render.ffmpeg import encode_mp4
 
     camera = default_camera(model, frames[0][0])
@@ -442,7 +452,8 @@ def render_recordings_3d(
         for recording in frames:
             yield from view.frames(recording, fps)
 
-    with MujocoView(model, *size, camera=camera) as view, atomic_output(path) as tmp:
+    shade = len(frames) == 1 if shadows is None else shadows
+    with MujocoView(model, *size, camera=camera, shadows=shade) as view, atomic_output(path) as tmp:
         encode_mp4(every_frame(view), tmp, size=size, fps=fps)
     return Path(path)
 
