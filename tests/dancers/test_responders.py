@@ -10,7 +10,7 @@ import pytest
 from sinews.dancers import NODES, DancerGenome, develop
 from sinews.dancers.genome import RESPONDER_GENES
 from sinews.dancers.responders import NONE_BELOW, SPECIES, responders
-from sinews.experiments.dancers import dance
+from sinews.experiments.dancers.simulate import dance
 from sinews.music.features import MusicFeatures
 from sinews.music.spectrum import band_edges, band_for_pitch
 

@@ -8,8 +8,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from sinews.experiments import dancer_fitness
-from sinews.experiments.dancer_fitness import (
+from sinews.experiments.dancers import score as dancer_fitness
+from sinews.experiments.dancers.score import (
     TERMS,
     DancerContext,
     beat_align,
@@ -19,7 +19,7 @@ from sinews.experiments.dancer_fitness import (
     score_chunk,
     variety,
 )
-from sinews.experiments.dancers import random_genomes
+from sinews.experiments.dancers.simulate import random_genomes
 from sinews.music import analyse_file
 from sinews.trajectory import Trajectory
 

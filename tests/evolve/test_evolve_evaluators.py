@@ -12,7 +12,7 @@ import pytest
 from sinews.dancers import DancerGenome
 from sinews.errors import SinewsError
 from sinews.evolve import chunk_slices, make_evaluator
-from sinews.experiments.dancer_evolution import create_dancer_run, dancer_config, run_dancers
+from sinews.experiments.dancers.run import KIND
 from sinews.store import RunStore
 
 SONG = str(Path(__file__).resolve().parents[1] / "data" / "loop_mika.flac")
@@ -47,16 +47,13 @@ def test_unknown_executor_and_stray_scheduler_are_refused() -> None:
 
 
 def evolve(tmp_path: Path, executor: str) -> tuple[np.ndarray, np.ndarray, str]:
-    config, song, seconds = dancer_config(
-        file_values={},
-        options={"song": SONG, "population": 5, "generations": 3, "seed": 4, "seconds": 2.0,
-                 "phase_in": "0:1"},
-    )  # fmt: skip
+    options = {"song": SONG, "population": 5, "generations": 3, "seed": 4, "seconds": 2.0,
+               "phase_in": "0:1"}  # fmt: skip
     with RunStore(tmp_path / f"{executor}.db") as store:
-        run_id = create_dancer_run(store, config, song=song, seconds=seconds)
+        run_id = KIND.create_run(store, subject="dancers", file_values={}, options=options)
         with make_evaluator(executor, workers=2) as evaluator:
             assert evaluator.n_workers == (1 if executor == "serial" else 2)
-            run_dancers(store, run_id, evaluator=evaluator)
+            KIND.run(store, run_id, evaluator=evaluator)
         individuals = store.individuals(run_id)
         status = store.run(run_id).status
     genomes = np.array([ind.genome for ind in individuals])

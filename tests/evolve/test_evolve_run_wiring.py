@@ -10,21 +10,13 @@ from typing import Any
 import numpy as np
 import pytest
 
-from sinews.dancers import DancerGenome
 from sinews.errors import SinewsError
 from sinews.evolve import SerialEvaluator
-from sinews.experiments import dancer_fitness
-from sinews.experiments.dancer_evolution import (
-    create_dancer_run,
-    dancer_config,
-    pick_dancers,
-    run_dancers,
-    run_music,
-    simulate_individual,
-    song_path,
-)
-from sinews.experiments.dancer_fitness import beat_align
-from sinews.experiments.evolution import FloatStrategies, record_picks
+from sinews.experiments.dancers import score as dancer_fitness
+from sinews.experiments.dancers.run import GENOMES, KIND, run_music
+from sinews.experiments.dancers.score import beat_align
+from sinews.experiments.dancers.settings import dancer_config, song_path
+from sinews.experiments.evolution import Strategies, record_picks
 from sinews.experiments.run_config import EvolutionConfig, load_toml
 from sinews.store import RunStore, generation_stats
 from sinews.trajectory import Trajectory
@@ -103,28 +95,26 @@ def test_demo_songs_are_written_once_to_the_data_dir(tmp_path: Path) -> None:
 
 
 def start(store: RunStore, **options: object) -> int:
-    config, song, seconds = dancer_config(
-        file_values={},
-        options={"song": SONG, "population": 6, "generations": 2, "seconds": 2.0, **options},
-    )
-    return create_dancer_run(store, config, song=song, seconds=seconds)
+    return KIND.create_run(store, subject="dancers", file_values={}, options={
+        "song": SONG, "population": 6, "generations": 2, "seconds": 2.0, **options,
+    })  # fmt: skip
 
 
 def test_interactive_run_advances_by_picks_in_one_transaction(tmp_path: Path) -> None:
     with RunStore(tmp_path / "runs.db") as store:
         run = start(store, strategy="interactive")
-        run_dancers(store, run, evaluator=SerialEvaluator())
+        KIND.run(store, run, evaluator=SerialEvaluator())
         assert store.last_generation(run) == 0 and store.run(run).status == "running"
-        summary = pick_dancers(store, run, 0, [1, 4])
-        assert summary.generation == 1 and summary.best is not None
+        summary = KIND.pick(store, run, 0, [1, 4])
+        assert summary.generation == 1 and summary.best is None  # by hand: not scored
         before, after = store.individuals(run, 0), store.individuals(run, 1)
         assert [i.picked for i in before] == [False, True, False, False, True, False]
         np.testing.assert_array_equal(after[0].genome, before[1].genome)
         picked_ids = {before[1].id, before[4].id}
         assert all(set(i.parents) <= picked_ids and i.parents for i in after)
         with pytest.raises(SinewsError, match="picks are for generation 1, not 0"):
-            pick_dancers(store, run, 0, [2])
-        record_picks(store, run, 1, [], strategies=FloatStrategies(DancerGenome.SIZE))
+            KIND.pick(store, run, 0, [2])
+        record_picks(store, run, 1, [], strategies=Strategies(GENOMES))
         fresh = store.individuals(run, 2)
         assert fresh[0].fitness is None and all(not i.parents for i in fresh)
 
@@ -132,11 +122,11 @@ def test_interactive_run_advances_by_picks_in_one_transaction(tmp_path: Path) ->
 def test_a_ga_run_refuses_picks_and_can_be_extended(tmp_path: Path) -> None:
     with RunStore(tmp_path / "runs.db") as store:
         run = start(store)
-        run_dancers(store, run, evaluator=SerialEvaluator())
+        KIND.run(store, run, evaluator=SerialEvaluator())
         assert store.run(run).status == "finished"
         with pytest.raises(SinewsError, match="does not take picks"):
-            record_picks(store, run, 1, [0], strategies=FloatStrategies(DancerGenome.SIZE))
-        run_dancers(store, run, evaluator=SerialEvaluator(), generations=3)
+            record_picks(store, run, 1, [0], strategies=Strategies(GENOMES))
+        KIND.run(store, run, evaluator=SerialEvaluator(), generations=3)
         info = store.run(run)
         assert (info.generations, info.status, info.config["generations"]) == (3, "finished", 3)
         for individual in store.individuals(run, 2):
@@ -144,15 +134,16 @@ def test_a_ga_run_refuses_picks_and_can_be_extended(tmp_path: Path) -> None:
             assert ancestry[-1].generation == 0
             assert all(a.parents for a in ancestry if a.generation > 0)
         with pytest.raises(SinewsError, match="already has 3 generations"):
-            run_dancers(store, run, evaluator=SerialEvaluator(), generations=2)
+            KIND.run(store, run, evaluator=SerialEvaluator(), generations=2)
 
 
 def test_replaying_an_individual_reproduces_its_fitness(tmp_path: Path) -> None:
     with RunStore(tmp_path / "runs.db") as store:
         run = start(store, fitness="beat-align")
-        run_dancers(store, run, evaluator=SerialEvaluator())
+        KIND.run(store, run, evaluator=SerialEvaluator())
         best = store.best(run)
-        traj, path = simulate_individual(store, best)
+        (replay,) = KIND.replay(store, [best])
+        traj, path = replay.trajectory, replay.audio
         assert path == Path(SONG)
         assert traj.duration == pytest.approx(2.0, abs=0.05)
         assert beat_align(traj) == best.fitness
@@ -162,8 +153,8 @@ def test_a_changed_song_is_detected(tmp_path: Path) -> None:
     song = tmp_path / "song.flac"
     song.write_bytes(Path(SONG).read_bytes())
     with RunStore(tmp_path / "runs.db") as store:
-        config, _, _ = dancer_config(file_values={}, options={"song": str(song)})
-        run = create_dancer_run(store, config, song=str(song), seconds=1.0)
+        run = KIND.create_run(store, subject="dancers", file_values={},
+                              options={"song": str(song), "seconds": 1.0})  # fmt: skip
         song.write_bytes((Path(SONG).parent / "loop_compus.flac").read_bytes())
         with pytest.raises(SinewsError, match="the song has changed since run 1 started"):
             run_music(store.run(run))
@@ -181,7 +172,7 @@ def test_blown_up_dancers_get_the_worst_fitness_and_the_run_goes_on(
     monkeypatch.setattr(dancer_fitness, "dance", first_blows_up)
     with RunStore(tmp_path / "runs.db") as store:
         run = start(store, generations=3)
-        run_dancers(store, run, evaluator=SerialEvaluator())
+        KIND.run(store, run, evaluator=SerialEvaluator())
         assert store.run(run).status == "finished"
         for generation in range(3):
             first, *others = store.individuals(run, generation)

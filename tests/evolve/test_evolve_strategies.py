@@ -9,19 +9,22 @@ import pytest
 
 from sinews.evolve import (
     GeneticAlgorithm,
+    GenomeSpace,
     HybridStrategy,
     InteractiveStrategy,
-    Strategy,
     StrategyError,
+    make_strategy,
+    restore_strategy,
 )
 
 P, G = 10, 6
 
 
 def ga(seed: int = 0, **options: object) -> GeneticAlgorithm:
-    strategy = Strategy.create(
-        "ga", population_size=P, genome_size=G, rng=np.random.default_rng(seed), options=options
-    )
+    strategy = make_strategy(
+        "ga", population_size=P, rng=np.random.default_rng(seed), genomes=GenomeSpace(size=G),
+        options=options,
+    )  # fmt: skip
     assert isinstance(strategy, GeneticAlgorithm)
     return strategy
 
@@ -83,7 +86,7 @@ def test_bad_sizes_and_names_are_refused() -> None:
     with pytest.raises(StrategyError, match="genome_size"):
         GeneticAlgorithm(population_size=P, genome_size=0, rng=rng)
     with pytest.raises(StrategyError, match="no strategy called"):
-        Strategy.create("cma", population_size=P, genome_size=G, rng=rng)
+        make_strategy("cma", population_size=P, rng=rng, genomes=GenomeSpace(size=G))
 
 
 def test_ga_keeps_its_elites_and_reports_lineage() -> None:
@@ -216,11 +219,12 @@ def test_hybrid_override_breeds_only_from_picks() -> None:
 @pytest.mark.parametrize("name", ["ga", "hybrid", "interactive"])
 def test_checkpoint_restores_exactly(name: str) -> None:
     rng = np.random.default_rng(11)
-    strategy = Strategy.create(
-        name, population_size=P, genome_size=G, rng=rng, options={"mutation_sigma": 0.2}
-    )
+    strategy = make_strategy(
+        name, population_size=P, rng=rng, genomes=GenomeSpace(size=G),
+        options={"mutation_sigma": 0.2},
+    )  # fmt: skip
     population = strategy.ask()
-    pending = Strategy.from_bytes(strategy.to_bytes())
+    pending = restore_strategy(strategy.to_bytes())
     assert pending.awaiting_tell and pending.generation == 0
     np.testing.assert_array_equal(pending.population, population)
     tell = {"ga": lambda s: s.tell(sphere(population)),
@@ -228,7 +232,7 @@ def test_checkpoint_restores_exactly(name: str) -> None:
             "interactive": lambda s: s.tell([3, 4])}[name]  # fmt: skip
     tell(strategy)
     tell(pending)
-    told = Strategy.from_bytes(strategy.to_bytes())
+    told = restore_strategy(strategy.to_bytes())
     expected = strategy.ask()
     np.testing.assert_array_equal(pending.ask(), expected)
     np.testing.assert_array_equal(told.ask(), expected)
@@ -250,25 +254,22 @@ def test_checkpoint_is_json_with_the_generator_state() -> None:
 )
 def test_bad_checkpoints_are_refused(data: bytes) -> None:
     with pytest.raises(StrategyError):
-        Strategy.from_bytes(data)
+        restore_strategy(data)
 
 
 def test_checkpoint_of_another_strategy_is_refused() -> None:
     strategy = interactive()
-    with pytest.raises(StrategyError, match="not a GeneticAlgorithm"):
+    with pytest.raises(StrategyError, match="not a 'ga' strategy checkpoint"):
         GeneticAlgorithm.from_bytes(strategy.to_bytes())
 
 
 def test_every_strategy_is_known_whatever_was_imported_first() -> None:
-    """A fresh interpreter that imports only the base module still knows the paper's GA."""
+    """The registry is an explicit table: a fresh interpreter that imports only it knows
+    every strategy, the paper's GA and GP included."""
     import subprocess
     import sys
 
-    code = (
-        "import numpy as np; from sinews.evolve.strategy import Strategy; "
-        "s = Strategy.create('alton', population_size=10, genome_size=5, "
-        "rng=np.random.default_rng(0)); print(s.name)"
-    )
+    code = "from sinews.evolve.registry import STRATEGIES; print(' '.join(STRATEGIES))"
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
-    assert done.stdout.strip() == "alton"
+    assert done.stdout.split() == ["ga", "hybrid", "interactive", "alton", "gp"]

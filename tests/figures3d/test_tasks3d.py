@@ -12,7 +12,8 @@ pytest.importorskip("mujoco")
 from sinews.control import HoldPose
 from sinews.control.gp import ramped_half_and_half
 from sinews.control.springnet import SpringNetController, SpringNetGenome
-from sinews.experiments.gp_figures import GPSettings, measure_programs, primitive_set
+from sinews.experiments.gp.settings import GPSettings, Runtime
+from sinews.experiments.gp.simulate import measure_programs
 from sinews.figures import rollout
 from sinews.figures.figure import FigureError
 from sinews.figures.tasks import Task, TaskMeter, make_task
@@ -98,19 +99,22 @@ def test_a_wave_at_the_rate_scores_near_zero_and_a_hanging_arm_does_not() -> Non
     rollout(figure, Wave(), 1, task.seconds, nthread=1, observer=meter)
     waving = dict(zip(task.weights, meter.terms()[0], strict=True))
     hanging = _held(task, {})
+    raised = _held(task, {"shoulder_x_r": -2.6})  # up and out to the side, held still
     assert -waving["distance"] < 0.02
     assert -hanging["distance"] > 0.5  # the hand is 0.6 m below the shoulder
+    # a still hand off to the side is no wave, whatever the window's fraction of a period
+    assert -raised["distance"] == pytest.approx(task.goal.wave.amplitude, abs=0.01)
 
 
 @pytest.mark.parametrize(("name", "seconds"), [("luxo3d-hop", 1.0), ("humanoid3d-nose", 0.5)])
 def test_gp_scores_do_not_depend_on_batch_or_threads(name: str, seconds: float) -> None:
-    task = make_task(name, seconds=seconds)
-    pset = primitive_set(task, GPSettings())
-    programs = ramped_half_and_half(pset, np.random.default_rng(5), n_programs=10,
-                                    n_trees=len(task.joints), min_depth=2, max_depth=5)  # fmt: skip
-    whole = measure_programs(task, programs, GPSettings(nthread=2), record=True)
-    again = measure_programs(task, programs, GPSettings(nthread=2), record=True)
-    part = measure_programs(task, programs[3:8], GPSettings(nthread=1), record=True)
+    settings = GPSettings(name, {}, seconds=seconds)
+    programs = ramped_half_and_half(settings.pset, np.random.default_rng(5), n_programs=10,
+                                    n_trees=len(settings.task.joints), min_depth=2,
+                                    max_depth=5)  # fmt: skip
+    whole = measure_programs(settings, programs, Runtime(nthread=2), record=True)
+    again = measure_programs(settings, programs, Runtime(nthread=2), record=True)
+    part = measure_programs(settings, programs[3:8], Runtime(nthread=1), record=True)
     np.testing.assert_array_equal(whole.terms, again.terms)
     np.testing.assert_array_equal(whole.terms[3:8], part.terms)
     assert whole.result.qpos is not None and part.result.qpos is not None

@@ -8,7 +8,7 @@ import pytest
 from scipy import stats
 
 from sinews.control.springnet import MASS_RANGE, POSITION_RANGE, SPRING_RANGE, SpringNetGenome
-from sinews.evolve import Strategy, StrategyError
+from sinews.evolve import GenomeSpace, StrategyError, make_strategy, restore_strategy
 from sinews.evolve.alton import MUTATION_MIX, AltonGA, SpringNetEncoding
 
 FloatArray = npt.NDArray[np.float64]
@@ -143,12 +143,12 @@ def test_more_mutations_change_more() -> None:
 
 def test_checkpoints_continue_bit_for_bit_and_by_name() -> None:
     ga = told(25, seed=5, picks=[1])
-    copy = Strategy.from_bytes(ga.to_bytes())
+    copy = restore_strategy(ga.to_bytes())
     assert isinstance(copy, AltonGA) and copy.mutations == 1
     np.testing.assert_array_equal(copy.ask(), ga.ask())
     np.testing.assert_array_equal(copy.parents, ga.parents)
-    made = Strategy.create("alton", population_size=10, genome_size=14,
-                           rng=np.random.default_rng(0), options={"mutations": 2})  # fmt: skip
+    made = make_strategy("alton", population_size=10, rng=np.random.default_rng(0),
+                         genomes=GenomeSpace(size=14), options={"mutations": 2})  # fmt: skip
     assert isinstance(made, AltonGA) and made.options()["mutations"] == 2
 
 

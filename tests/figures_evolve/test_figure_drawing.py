@@ -16,6 +16,7 @@ from sinews.render import (
     FigureGeometry,
     FigurePainter,
     NetPanel,
+    Painter,
     RasterCanvas,
     RenderError,
     SvgCanvas,
@@ -64,6 +65,7 @@ def test_the_camera_follows_a_figure_that_travels_far() -> None:
     geometry = FigureGeometry.of(snake())
     near, far = sliding(snake(), 0.5), sliding(snake(), 8.0)
     fixed = FigurePainter(geometry, near, size=(160, 120))
+    assert isinstance(fixed, Painter) and (fixed.size, fixed.fps) == ((160, 120), near.fps)
     assert len({v.left for v in fixed.views}) == 1
     follow = FigurePainter(geometry, far, size=(160, 120))
     lefts = np.array([v.left for v in follow.views])

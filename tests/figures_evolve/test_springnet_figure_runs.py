@@ -15,9 +15,10 @@ pytest.importorskip("mujoco")
 from sinews.cli import main
 from sinews.errors import SinewsError
 from sinews.evolve import ProcessEvaluator, SerialEvaluator
-from sinews.experiments.figure_runs import experiment_of, figure_experiment, parse_keep
-from sinews.experiments.springnet_figures import EXPERIMENT
-from sinews.experiments.springnet_fitness import SpringNetSettings
+from sinews.experiments.figures import parse_keep
+from sinews.experiments.kinds import kind_of, run_kind
+from sinews.experiments.springnet.run import KIND as EXPERIMENT
+from sinews.experiments.springnet.settings import SpringNetSettings
 from sinews.store import RunStore
 
 TINY = {"population": 10, "generations": 3, "seconds": 0.5, "seed": 3}
@@ -36,7 +37,7 @@ def contents(db: Path) -> list[Any]:
 
 def evolve(db: Path, evaluator: Any = None, **options: Any) -> int:
     with RunStore(db) as store:
-        run = EXPERIMENT.create_run(store, figure="snake", file_values={},
+        run = EXPERIMENT.create_run(store, subject="snake", file_values={},
                                     options={**TINY, **options})  # fmt: skip
         EXPERIMENT.run(store, run, evaluator=evaluator or SerialEvaluator())
     return run
@@ -58,7 +59,7 @@ def test_a_run_stores_the_papers_generations(tmp_path: Path) -> None:
     run = evolve(tmp_path / "r.db", generations=2, keep={0: [0]})
     with RunStore(tmp_path / "r.db") as store:
         info = store.run(run)
-        assert info.kind == "springnet-snake" and experiment_of(info) is EXPERIMENT
+        assert info.kind == "springnet-snake" and kind_of(info) is EXPERIMENT
         assert info.config["strategy"]["name"] == "alton" and info.config["masses"] == 4
         assert info.config["physics_hz"] == 500 and info.config["keep"] == {"0": [0]}
         first, second = store.individuals(run, 0), store.individuals(run, 1)
@@ -98,7 +99,7 @@ def test_a_killed_run_resumes_to_the_uninterrupted_one(tmp_path: Path) -> None:
 def test_the_studio_hook_keeps_picks_and_breeds_the_next(tmp_path: Path) -> None:
     run = evolve(tmp_path / "p.db", generations=1)
     with RunStore(tmp_path / "p.db") as store:
-        summary = figure_experiment("springnet").pick(store, run, 0, [7])
+        summary = run_kind("springnet").pick(store, run, 0, [7])
         assert summary.generation == 1
         assert store.individuals(run, 0)[7].picked
         assert store.individuals(run, 1)[0].parents == (store.individuals(run, 0)[7].id,)

@@ -13,9 +13,9 @@ pytest.importorskip("mujoco")
 
 from sinews.evolve import SerialEvaluator
 from sinews.experiments.evolution import GenerationSummary
-from sinews.experiments.gp_figures import measure_programs
-from sinews.experiments.gp_runs import EXPERIMENT
-from sinews.experiments.gp_scoring import GPRunSettings
+from sinews.experiments.gp.run import KIND as EXPERIMENT
+from sinews.experiments.gp.settings import GPSettings
+from sinews.experiments.gp.simulate import measure_programs
 from sinews.experiments.run_config import EvolutionConfig
 from sinews.store import RunStore
 
@@ -28,7 +28,7 @@ OPTIONS = {"task": "hop", "target": "1.0", "population": 6, "generations": 3, "s
 def evolve(db: Path, on_generation: Callable[[GenerationSummary], None] | None = None) -> int:
     """A 6-program, 3-generation hop run in ``db``; its id."""
     with RunStore(db) as store:
-        run = EXPERIMENT.create_run(store, figure="luxo", file_values=RUN, options=OPTIONS)
+        run = EXPERIMENT.create_run(store, subject="luxo", file_values=RUN, options=OPTIONS)
         EXPERIMENT.run(store, run, evaluator=SerialEvaluator(), on_generation=on_generation)
     return run
 
@@ -57,9 +57,9 @@ def test_a_short_run_is_deterministic_and_reports_every_generation(
 def test_the_replayed_best_scores_as_it_did_in_its_generation(db: Path) -> None:
     with RunStore(db) as store:
         best = store.best(1)
-        settings = GPRunSettings.from_values(store.run(1).config)
+        settings = GPSettings.from_values(store.run(1).config)
         (replay,) = EXPERIMENT.replay(store, [best], record_hz=20.0)
-    alone = measure_programs(settings.task, settings.parse([best.genome]), settings.simulation())
+    alone = measure_programs(settings, settings.parse([best.genome]))
     assert dict(zip(settings.task.weights, alone.terms[0].tolist(), strict=True)) == best.terms
     qpos = replay.trajectory.qpos
     assert qpos is not None and replay.trajectory.fps == 20.0
@@ -85,10 +85,10 @@ def test_generations_are_rated_by_the_phased_in_weights(db: Path) -> None:
 
 
 def test_programs_are_measured_by_the_tasks_terms() -> None:
-    settings = GPRunSettings(task_name="luxo-hop", task_options={"target": 1.0}, seconds=1.0)
+    settings = GPSettings(task_name="luxo-hop", task_options={"target": 1.0}, seconds=1.0)
     still, crouch = settings.parse(["(list 0.0 0.0 0.0)", "(list 0.5 (* -1.0 time) gx)"])
-    done = measure_programs(settings.task, [still, crouch], settings.simulation())
-    alone = measure_programs(settings.task, [crouch], settings.simulation())
+    done = measure_programs(settings, [still, crouch])
+    alone = measure_programs(settings, [crouch])
     np.testing.assert_array_equal(done.terms[1], alone.terms[0])  # the batch does not matter
     assert done.terms[0, 0] == pytest.approx(-1.0, abs=1e-3)  # standing still, 1 m from the X
     assert not done.failed.any() and (done.nonfinite == 0).all()

@@ -16,10 +16,10 @@ pytest.importorskip("mujoco")
 
 from killed_runs import sinews_command
 from sinews.cli import main
-from sinews.cli.evolve import best_of
 from sinews.control.gp import format_program
-from sinews.experiments.gp_runs import EXPERIMENT
-from sinews.experiments.gp_scoring import GPRunSettings
+from sinews.experiments.gp.run import KIND as EXPERIMENT
+from sinews.experiments.gp.settings import GPSettings
+from sinews.experiments.kinds import best_of
 from sinews.figures import luxo
 from sinews.figures.tasks import standing_height
 from sinews.render import FigureGeometry, FigurePainter, TaskScene
@@ -85,7 +85,7 @@ def test_a_hop_run_prints_saves_and_draws_its_program(
     assert status == 0 and '"luxo-hop"' in out
     program = out[out.index("(list") :].strip()
     with RunStore(db) as store:
-        settings = GPRunSettings.from_values(store.run(1).config)
+        settings = GPSettings.from_values(store.run(1).config)
         best = best_of(store, 1)
     assert settings.task_options == {"target": 1.5} and program == best.genome
     (parsed,) = settings.parse([program])  # with the run's terminals and functions
@@ -158,12 +158,12 @@ def test_humanoid_runs_draw_the_target_and_the_hand(
         (["luxo", "--target", "abc"], "--target for luxo-hop must be a distance in m"),
         (["luxo", "--target", "1,2"], "--target for luxo-hop must be a distance in m"),
         (["luxo", "--task", "dance"], "no luxo task 'dance'; choose from hop, limbo"),
-        (["snake", "--task", "hop"], "GP has no task for the snake"),
+        (["snake"], "no controller called 'gp' for the snake; choose from springnet"),
         (["humanoid", "--task", "nose", "--target", "0.4,1.2"], "the nose task has no --target"),
         (["humanoid", "--task", "reach", "--target", "0.45"], "must be X,Z in m"),
         (["luxo", "--keep", "KEEP"], "--keep does not apply to gp runs"),
         (["luxo", "--masses", "3"], "--masses does not apply to gp runs"),
-        (["luxo", "--strategy", "alton"], "breed with the 'gp' strategy, not 'alton'"),
+        (["luxo", "--strategy", "alton"], "gp runs breed with 'gp', not 'alton'"),
         (["luxo", "--config", "CONFIG"], "no fitness term called 'grace'"),
     ],
 )

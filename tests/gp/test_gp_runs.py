@@ -16,7 +16,7 @@ pytest.importorskip("mujoco")
 from sinews.cli import main
 from sinews.evolve import SerialEvaluator
 from sinews.experiments.evolution import GenerationSummary
-from sinews.experiments.gp_runs import EXPERIMENT
+from sinews.experiments.gp.run import KIND as EXPERIMENT
 from sinews.store import RunStore
 
 OPTIONS: dict[str, Any] = {"task": "hop", "target": "1.5", "population": 8, "generations": 8,
@@ -65,7 +65,7 @@ def test_a_stopped_run_resumes_to_the_uninterrupted_one(
 ) -> None:
     cut = tmp_path / "cut.db"
     with RunStore(cut) as store:
-        run = EXPERIMENT.create_run(store, figure="luxo", file_values={}, options=OPTIONS)
+        run = EXPERIMENT.create_run(store, subject="luxo", file_values={}, options=OPTIONS)
         if how == "error":
             with pytest.raises(Stop):
                 EXPERIMENT.run(store, run, evaluator=SerialEvaluator(),

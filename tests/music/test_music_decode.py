@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 import soundfile as sf
 
+from sinews.ffmpeg import FFMPEG_ENV, find_ffmpeg
 from sinews.music import MAX_SECONDS, Audio, AudioError, load_audio, save_wav
-from sinews.music.ffmpeg import FFMPEG_ENV, find_ffmpeg
 
 SR = 44100
 

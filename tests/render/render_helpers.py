@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from sinews.render.ffmpeg import ffmpeg_exe
+from sinews.render.mp4 import ffmpeg_exe
 from sinews.trajectory import Trajectory
 
 # name: (x, y) rest position in metres, radius in metres

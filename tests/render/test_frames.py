@@ -29,7 +29,7 @@ def test_paint_frames_draws_every_step_th_frame_and_reports_each() -> None:
 def test_a_gif_reports_its_frames_and_nothing_outside_the_block(tmp_path: Path) -> None:
     positions = np.zeros((12, 2, 2), np.float32)
     positions[:, 1, 0] = np.linspace(0.1, 0.5, 12)
-    traj = Trajectory(positions=positions, fps=12.0, edges=[[0, 1]], node_names=("a", "b"))
+    traj = Trajectory(positions, fps=12.0, edges=np.array([[0, 1]]), node_names=("a", "b"))
     reports: list[tuple[int, int]] = []
     with reporting_progress(lambda done, total: reports.append((done, total))):
         render(traj, tmp_path / "a.gif", size=64)

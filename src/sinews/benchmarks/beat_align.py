@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from sinews.benchmarks._measure import Measurement
-from sinews.experiments.dancers import dance, random_genomes
+from sinews.experiments.dancers.simulate import dance, random_genomes
 from sinews.music import DEMO_NAMES, analyse_file, beat_align_score, write_demo
 from sinews.trajectory import Trajectory
 

@@ -17,7 +17,7 @@ from pathlib import Path
 
 from sinews.benchmarks._measure import Measurement
 from sinews.evolve import Evaluator, make_evaluator
-from sinews.experiments.dancer_evolution import create_dancer_run, dancer_config, run_dancers
+from sinews.experiments.dancers.run import KIND
 from sinews.experiments.evolution import GenerationSummary
 from sinews.music.demo import write_demo
 from sinews.store import RunStore
@@ -32,14 +32,12 @@ class _Run:
 
     def __init__(self, evaluator: Evaluator, song: Path, db: Path, *, population: int,
                  seconds: float) -> None:  # fmt: skip
-        config, name, length = dancer_config(
-            file_values={},
-            options={"song": str(song), "population": population, "generations": 1,
-                     "seconds": seconds, "seed": 0},
-        )  # fmt: skip
         self.evaluator = evaluator
         self.store = RunStore(db)
-        self.run_id = create_dancer_run(self.store, config, song=name, seconds=length)
+        self.run_id = KIND.create_run(self.store, subject="dancers", file_values={}, options={
+            "song": str(song), "population": population, "generations": 1, "seconds": seconds,
+            "seed": 0,
+        })  # fmt: skip
         self.generations = 0
         self.step()  # warm up: worker start, numba cache, first transfer
 
@@ -47,7 +45,7 @@ class _Run:
         """Seconds of one more generation (ask, dance, score, store, tell)."""
         summaries: list[GenerationSummary] = []
         self.generations += 1
-        run_dancers(self.store, self.run_id, evaluator=self.evaluator,
+        KIND.run(self.store, self.run_id, evaluator=self.evaluator,
                     generations=self.generations, on_generation=summaries.append)  # fmt: skip
         return summaries[-1].seconds
 

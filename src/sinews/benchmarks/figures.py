@@ -31,10 +31,10 @@ import numpy as np
 from sinews.benchmarks._measure import Measurement, best_time
 from sinews.control.springnet import SpringNetController, SpringNetGenome
 from sinews.evolve import SerialEvaluator
-from sinews.experiments.springnet_figures import EXPERIMENT
-from sinews.experiments.springnet_fitness import SpringNetSettings, simulate
-from sinews.figures import Figure, humanoid, luxo, rollout, snake
-from sinews.figures._mujoco import require_mujoco
+from sinews.experiments.springnet.run import KIND
+from sinews.experiments.springnet.settings import SpringNetSettings
+from sinews.experiments.springnet.simulate import simulate
+from sinews.figures import Figure, humanoid, luxo, require_mujoco, rollout, snake
 from sinews.figures.humanoid3d import humanoid3d
 from sinews.figures.luxo3d import luxo3d
 from sinews.store import RunStore
@@ -92,13 +92,13 @@ def _evolution(population: int, generations: int, seconds: float) -> Measurement
         tempfile.TemporaryDirectory(prefix="sinews-bench-") as tmp,
         RunStore(Path(tmp) / "runs.db") as store,
     ):
-        run_id = EXPERIMENT.create_run(store, figure="snake", file_values={}, options=options)
+        run_id = KIND.create_run(store, subject="snake", file_values={}, options=options)
         settings = SpringNetSettings.from_values(store.run(run_id).config)
         genes = np.random.default_rng(0).random((population, settings.encoding.size))
         simulate(settings, genes[:2])  # compile or load the numba cache
         bare = best_time(lambda: simulate(settings, genes), 1)
         started = time.perf_counter()
-        EXPERIMENT.run(store, run_id, evaluator=SerialEvaluator())
+        KIND.run(store, run_id, evaluator=SerialEvaluator())
         total = time.perf_counter() - started
     return Measurement(
         f"snake GA {generations} gen x {population} x {seconds:g} s: {total:.0f} s",

@@ -27,10 +27,10 @@ import numpy.typing as npt
 
 from sinews.benchmarks._measure import Measurement, best_time
 from sinews.control.gp import GPController, ramped_half_and_half
-from sinews.experiments.gp_figures import GPSettings, primitive_set, wiring
-from sinews.figures import rollout
-from sinews.figures._mujoco import require_mujoco
-from sinews.figures.tasks import Task, make_task
+from sinews.experiments.gp.settings import GPSettings
+from sinews.experiments.gp.simulate import wiring
+from sinews.figures import require_mujoco, rollout
+from sinews.figures.tasks import Task
 
 __all__ = ["run"]
 
@@ -38,13 +38,13 @@ CHUNK = 100  # steps per mujoco.rollout call
 
 
 def _cases(
-    task: Task, size: int, seconds: float
+    settings: GPSettings, size: int, seconds: float
 ) -> tuple[Callable[[], object], Callable[[], object]]:
     mujoco = require_mujoco()
     from mujoco import rollout as mj_rollout
 
-    pset = primitive_set(task, GPSettings())
-    programs = ramped_half_and_half(pset, np.random.default_rng(0), n_programs=size,
+    task = settings.task
+    programs = ramped_half_and_half(settings.pset, np.random.default_rng(0), n_programs=size,
                                     n_trees=len(task.joints), min_depth=2, max_depth=6)  # fmt: skip
     ticks: list[npt.NDArray[np.float64]] = []
 
@@ -145,8 +145,7 @@ def run(quick: bool = False) -> list[Measurement]:
     size, seconds, repeats = (32, 0.2, 2) if quick else (256, 0.5, 3)
     results = []
     for name in ("luxo3d-hop", "humanoid3d-touch"):
-        task = make_task(name)
-        ours, reference = _cases(task, size, seconds)
+        ours, reference = _cases(GPSettings(name, {}), size, seconds)
         ours_time, reference_time = np.inf, np.inf
         for _ in range(repeats):
             ours_time = min(ours_time, best_time(ours, 1))
@@ -163,7 +162,7 @@ def run(quick: bool = False) -> list[Measurement]:
         )
     width, height, count = (320, 180, 5) if quick else (640, 360, 20)
     for name in ("luxo3d-hop", "humanoid3d-touch"):
-        frames = _frames(make_task(name), width, height, count)
+        frames = _frames(GPSettings(name, {}).task, width, height, count)
         if frames is not None:
             results.append(frames)
     return results

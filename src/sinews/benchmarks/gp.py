@@ -22,7 +22,6 @@ Three cases, each timed against a reference in the same run:
 
 from __future__ import annotations
 
-import dataclasses
 import os
 import time
 
@@ -38,19 +37,19 @@ from sinews.control.gp import (
 )
 from sinews.evolve import FitnessSpec, PhaseIn
 from sinews.evolve.gp import GPStrategy
-from sinews.experiments.gp_figures import GPSettings, measure_programs, primitive_set, wiring
-from sinews.experiments.gp_runs import default_phase_in
-from sinews.figures import rollout
-from sinews.figures._mujoco import require_mujoco
-from sinews.figures.tasks import Task, luxo_hop
+from sinews.experiments.gp.run import default_phase_in
+from sinews.experiments.gp.settings import GPSettings, Runtime
+from sinews.experiments.gp.simulate import measure_programs, wiring
+from sinews.figures import require_mujoco, rollout
+from sinews.figures.tasks import Task
 
 __all__ = ["run"]
 
 FloatArray = npt.NDArray[np.float64]
 
 
-def _interpreter(task: Task, size: int, calls: int) -> list[Measurement]:
-    pset = primitive_set(task, GPSettings())
+def _interpreter(settings: GPSettings, size: int, calls: int) -> list[Measurement]:
+    pset = settings.pset
     programs = ramped_half_and_half(pset, np.random.default_rng(0), n_programs=size, n_trees=3)
     inputs = np.random.default_rng(1).normal(size=(size, pset.n_terminals))
     packed = PackedPopulation.pack(programs)
@@ -94,24 +93,24 @@ def _stepping_alone(task: Task, targets: FloatArray, substeps: int) -> float:
     return best_time(replay, repeats=1)
 
 
-def _generation(task: Task, size: int, seconds: float, repeats: int) -> list[Measurement]:
-    serial = GPSettings(seconds=seconds)
-    parallel = dataclasses.replace(serial, parallel_interpreter=True)
+def _generation(settings: GPSettings, size: int, repeats: int) -> list[Measurement]:
+    task, seconds = settings.task, settings.task.seconds
+    serial, parallel = Runtime(), Runtime(parallel_interpreter=True)
     paper = PhaseIn(**default_phase_in(50))  # generation 0 is rated by the main goal alone
     spec = FitnessSpec(main="distance", weights=task.weights, phase_in=paper)
     first = GPStrategy(
-        population_size=size, pset=primitive_set(task, serial), n_trees=len(task.joints),
+        population_size=size, pset=settings.pset, n_trees=len(task.joints),
         rng=np.random.default_rng(0),
     )  # fmt: skip
     programs = first.ask()
     checkpoint = first.to_bytes()
-    for settings in (serial, parallel):
-        measure_programs(task, programs[:2], settings)  # compile or load the numba cache
+    for runtime in (serial, parallel):
+        measure_programs(settings, programs[:2], runtime)  # compile or load the numba cache
 
-    def generation(settings: GPSettings) -> float:
+    def generation(runtime: Runtime) -> float:
         strategy = GPStrategy.from_bytes(checkpoint)
         start = time.perf_counter()
-        done = measure_programs(task, programs, settings)
+        done = measure_programs(settings, programs, runtime)
         strategy.tell(spec.combine(done.terms, done.failed, 0))
         strategy.ask()
         return time.perf_counter() - start
@@ -122,7 +121,7 @@ def _generation(task: Task, size: int, seconds: float, repeats: int) -> list[Mea
         observer=lambda t, sensors, answer: targets.append(answer.copy()),
     )  # fmt: skip
     replay = np.array(targets[:-1])
-    substeps = serial.physics_hz // serial.control_hz
+    substeps = settings.physics_hz // settings.control_hz
     times = {"serial": np.inf, "parallel": np.inf, "mujoco": np.inf}
     for _ in range(repeats):  # alternately, so that load from elsewhere hits all alike
         times["serial"] = min(times["serial"], generation(serial))
@@ -139,6 +138,6 @@ def _generation(task: Task, size: int, seconds: float, repeats: int) -> list[Mea
 
 def run(quick: bool = False) -> list[Measurement]:
     """P = 250 programs; a generation of 5 s trials (quick: P = 64, 1 s)."""
-    task = luxo_hop(1.0)
     size, seconds, calls, repeats = (64, 1.0, 200, 1) if quick else (250, 5.0, 2000, 2)
-    return [*_interpreter(task, size, calls), *_generation(task, size, seconds, repeats)]
+    settings = GPSettings(task_name="luxo-hop", task_options={"target": 1.0}, seconds=seconds)
+    return [*_interpreter(settings, size, calls), *_generation(settings, size, repeats)]

@@ -7,9 +7,10 @@ and pack the motion as int16 millimetres. Target: under 0.5 s.
 
 Cases (each against a reference timed in the same run, taking turns):
 
-- the studio's breeding vs `pick_dancers` (which also scores every child,
-  so the page would have to simulate them a second time to see them) plus
-  the same dance and pack;
+- the studio's breeding of a run bred by hand vs that of a hybrid run (the
+  same `RunKind.pick`, which then also scores every child, so the page
+  would have to simulate them a second time to see them) plus the same
+  dance and pack;
 - encoding the generation's motion as the binary pack vs as JSON (integer
   millimetres, compact separators);
 - the size of that payload, as dancer-seconds per megabyte.
@@ -29,7 +30,8 @@ from pathlib import Path
 import numpy as np
 
 from sinews.benchmarks._measure import Measurement, best_time
-from sinews.experiments.dancer_evolution import pick_dancers
+from sinews.evolve import SerialEvaluator
+from sinews.experiments.dancers.run import KIND
 from sinews.music import demo_song, save_wav
 from sinews.store import RunStore
 from sinews.studio.motion import Motion
@@ -70,7 +72,12 @@ def run(quick: bool = False) -> list[Measurement]:
         with RunStore(folder / "studio.db") as store:
             runs = StudioRuns(store, library)
             song = library.import_file(_song(folder, seconds))
-            ours_run, theirs_run = runs.create(song, seed=1), runs.create(song, seed=1)
+            ours_run = runs.create(song, seed=1)
+            theirs_run = KIND.create_run(store, subject="dancers", file_values={}, options={
+                "song": song.setting, "population": runs.population, "seed": 1,
+                "generations": 1000, "strategy": "hybrid", "seconds": runs.get(ours_run).seconds,
+            })  # fmt: skip
+            KIND.run(store, theirs_run, evaluator=SerialEvaluator(), generations=1)
             motion = Motion(runs)
 
             def studio_breed() -> bytes:
@@ -79,7 +86,8 @@ def run(quick: bool = False) -> list[Measurement]:
                 return motion.generation(bred, generation)
 
             def scored_breed() -> bytes:
-                summary = pick_dancers(store, theirs_run, runs.get(theirs_run).last, PICKS)
+                last = store.last_generation(theirs_run)
+                summary = KIND.pick(store, theirs_run, last, PICKS)
                 return motion.generation(theirs_run, summary.generation)
 
             motion.generation(ours_run, 0)  # warm up: numba, the song's analysis
@@ -105,7 +113,7 @@ def run(quick: bool = False) -> list[Measurement]:
             "generations/s",
             1 / breeding["ours"],
             1 / breeding["scored"],
-            f"pick_dancers (scores) + dance + pack ({breeding['scored'] * 1e3:.0f} ms)",
+            f"a hybrid run's breeding (scores) + dance + pack ({breeding['scored'] * 1e3:.0f} ms)",
         ),
         Measurement(
             f"encode the generation's motion, {case} ({encoding['pack'] * 1e3:.1f} ms)",

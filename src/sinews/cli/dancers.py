@@ -10,8 +10,8 @@ import typer
 from sinews.cli.progress import frame_progress
 from sinews.cli.songs import Bpm
 from sinews.dancers import DancerGenome
-from sinews.experiments import dancers as experiment
-from sinews.experiments.dancer_evolution import song_path
+from sinews.experiments.dancers import simulate as experiment
+from sinews.experiments.dancers.settings import song_path
 from sinews.limits import MAX_PICTURE_PIXELS, MIN_PICTURE_PIXELS
 from sinews.music.analysis import analyse_file
 from sinews.render import contact_sheet, render

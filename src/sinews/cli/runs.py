@@ -10,24 +10,13 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
-from sinews.cli.evolve import (
-    Db,
-    Executor,
-    Scheduler,
-    Workers,
-    best_of,
-    default_executor,
-    open_store,
-    print_summary,
-    run_with_progress,
-)
+from sinews.cli.common import Db, Executor, Scheduler, Workers, open_store, write_text
 from sinews.cli.progress import frame_progress
-from sinews.dancers import DancerGenome
+from sinews.cli.report import print_summary, run_with_progress
 from sinews.errors import SinewsError
 from sinews.evolve import make_evaluator
-from sinews.experiments import dancer_evolution
 from sinews.experiments.evolution import full_weight_bests, full_weight_fitness
-from sinews.experiments.figure_runs import FigureExperiment, experiment_of
+from sinews.experiments.kinds import best_of, chosen_of, kind_of
 from sinews.experiments.run_config import EvolutionConfig
 from sinews.limits import MAX_GENERATIONS, MAX_PICTURE_PIXELS, MAX_RUN_ID, MIN_PICTURE_PIXELS
 from sinews.store import (
@@ -133,23 +122,20 @@ def best(run: Run, output: Output, db: Db = None) -> None:
     GP runs a .txt of the program's S-expression."""
     with open_store(db, readonly=True) as store:
         individual = best_of(store, run)
-        config = EvolutionConfig.from_dict(store.run(run).config)
-        experiment = experiment_of(store.run(run))
-        seed = ""
-        if experiment is None:
-            _dancer_genome(store, individual).save(output)
-            seed = f", wiggle seed {individual.seed}"
-        elif output.suffix.lower() == ".txt":
-            text = experiment.genome_text(individual)
+        info = store.run(run)
+        kind = kind_of(info)
+        if output.suffix.lower() == ".txt":
+            text = kind.genome_text(individual)
             if text is None:
-                raise SinewsError(f"run {run}'s controllers have no text form; write a .json")
-            output.write_text(text + "\n", encoding="utf-8")
+                raise SinewsError(f"run {run}'s genomes have no text form; write a .json")
         else:
-            document = experiment.genome_document(store, individual)
-            output.write_text(json.dumps(document, indent=1) + "\n", encoding="utf-8")
+            text = json.dumps(kind.genome_document(store, individual), indent=1)
+        write_text(output, text + "\n")
+        seed = "" if individual.seed is None else f", seed {individual.seed}"
+        rated = _rated(individual, EvolutionConfig.from_dict(info.config))
         typer.echo(
-            f"wrote {output} (individual {individual.id}, generation {individual.generation}, "
-            f"fitness {_number(_rated(individual, config))}{seed})"
+            f"wrote {output} (individual {individual.id}, generation {individual.generation}"
+            f"{seed}, fitness {_number(rated)})"
         )
 
 
@@ -205,7 +191,7 @@ def resume(
                 err=True,
             )
         with make_evaluator(
-            executor or default_executor(info), workers=workers, scheduler=scheduler
+            executor or kind_of(info).default_executor, workers=workers, scheduler=scheduler
         ) as evaluator:
             run_with_progress(store, run, evaluator=evaluator, generations=generations)
 
@@ -247,39 +233,35 @@ def render(
     """Re-simulate stored individuals and draw them.
 
     Dancers: .mp4 with the song, .gif, .png, .svg. Figures: .mp4 with the
-    controller's net above the figure, or a .png/.svg strobe picture.
+    controller's net above the figure, or a .png/.svg strobe picture. Any run:
+    .npz, the replayed motion itself (with the song's beats, for sinews score).
     """
-    from sinews.render import render as draw
+    from sinews.render.replays import draw_replays
 
     if [individual is not None, best_, generations is not None].count(True) != 1:
         raise SinewsError("give either --individual ID or --best (or, for figures, --generations)")
     with open_store(db) as store:
-        experiment = experiment_of(store.run(run))
-        if experiment is not None:
-            if debug_overlay:
-                raise SinewsError("--debug-overlay is for dancer runs")
+        kind = kind_of(store.run(run))
+        if generations is None:
+            chosen = [chosen_of(store, run, individual)]
+        else:
+            chosen = _generation_bests(store, run, generations)
+        replays = kind.replay(store, chosen, forces=debug_overlay)
+        if output.suffix.lower() == ".npz":
+            if len(replays) != 1:
+                raise SinewsError("a .npz holds one individual's motion; give --best or one id")
+            path = replays[0].trajectory.save(output)
+        else:
             with frame_progress(f"run {run}"):
-                _render_figures(store, run, experiment, output, individual, generations, size)
-            return
-        if generations is not None:
-            raise SinewsError("--generations is for figure runs")
-        chosen = _chosen(store, run, individual)
-        traj, song = dancer_evolution.simulate_individual(
-            store, chosen, record_forces=debug_overlay
-        )
-        sound = {"audio": song} if output.suffix.lower() == ".mp4" else {}
-        with frame_progress(f"run {run}"):
-            path = draw(traj, output, overlay=debug_overlay, size=size, **sound)
-        store.add_media(run, path, kind=path.suffix.lstrip(".").lower(), individual_id=chosen.id)
-    typer.echo(f"wrote {path} (individual {chosen.id}, fitness {_number(chosen.fitness)})")
-
-
-def _chosen(store: RunStore, run: int, individual: int | None) -> Individual:
-    """The individual ``individual`` of ``run``, or the run's best if None."""
-    chosen = best_of(store, run) if individual is None else store.individual(individual)
-    if chosen.run_id != run:
-        raise SinewsError(f"individual {chosen.id} belongs to run {chosen.run_id}, not {run}")
-    return chosen
+                path = draw_replays(replays, output, size=size, overlay=debug_overlay)
+        media_of = chosen[0].id if len(chosen) == 1 else None
+        store.add_media(run, path, kind=path.suffix.lstrip(".").lower(), individual_id=media_of)
+    described = ", ".join(
+        f"{r.individual.id}: {r.summary or f'fitness {_number(r.individual.fitness)}'}"
+        for r in replays[:4]
+    )
+    more = f" and {len(replays) - 4} more" if len(replays) > 4 else ""
+    typer.echo(f"wrote {path} (individual {described}{more})")
 
 
 def _generation_bests(store: RunStore, run: int, generations: str) -> list[Individual]:
@@ -300,58 +282,6 @@ def _generation_bests(store: RunStore, run: int, generations: str) -> list[Indiv
         raise SinewsError(f"run {run} has no scored generation {missing[0]}")
     best_index = dict(zip(available, stats.best_index.tolist(), strict=True))
     return [store.individuals(run, g)[best_index[g]] for g in wanted]
-
-
-def _render_figures(
-    store: RunStore,
-    run: int,
-    experiment: FigureExperiment,
-    output: Path,
-    individual: int | None,
-    generations: str | None,
-    size: int,
-) -> None:
-    """Replay and draw one individual, or the best of several generations in sequence."""
-    from sinews.render import FigureGeometry, FigurePainter, render_figure, render_figure_sequence
-
-    if generations is None:
-        chosen = [_chosen(store, run, individual)]
-    else:
-        chosen = _generation_bests(store, run, generations)
-    replays = experiment.replay(store, chosen)
-    if replays[0].figure.root == "free":  # 3D figures: MuJoCo's own renderer, offscreen
-        from sinews.render.mujoco_view import render_recordings_3d
-
-        recordings = [r.trajectory.qpos for r in replays if r.trajectory.qpos is not None]
-        path = render_recordings_3d(replays[0].figure.model(), recordings, output,
-                                    fps=replays[0].trajectory.fps, width=size)  # fmt: skip
-        store.add_media(run, path, kind=path.suffix.lstrip(".").lower(),
-                        individual_id=chosen[0].id if len(chosen) == 1 else None)  # fmt: skip
-        typer.echo(f"wrote {path} (individual {', '.join(str(c.id) for c in chosen[:4])})")
-        return
-    pixels = (size, 3 * size // 4)
-    geometry = FigureGeometry.of(replays[0].figure)
-    titles = [
-        f"{r.figure.name}, generation {r.individual.generation} #{r.individual.index}"
-        for r in replays
-    ]
-    if generations is None:
-        (replay,) = replays
-        path = render_figure(geometry, replay.trajectory, output, size=pixels,
-                             panel=replay.panel, title=titles[0], scene=replay.scene)  # fmt: skip
-    else:
-        painters = [
-            FigurePainter(
-                geometry, r.trajectory, size=pixels, panel=r.panel, title=title, scene=r.scene
-            )
-            for r, title in zip(replays, titles, strict=True)
-        ]
-        path = render_figure_sequence(painters, output)
-    media_of = chosen[0].id if len(chosen) == 1 else None
-    store.add_media(run, path, kind=path.suffix.lstrip(".").lower(), individual_id=media_of)
-    described = ", ".join(f"{r.individual.id}: {abs(r.distance):.3f} m" for r in replays[:4])
-    more = f" and {len(replays) - 4} more" if len(replays) > 4 else ""
-    typer.echo(f"wrote {path} (individual {described}{more})")
 
 
 def plot(run: Run, output: Output, db: Db = None) -> None:
@@ -376,19 +306,10 @@ def plot(run: Run, output: Output, db: Db = None) -> None:
         song = info.config.get("song", "")
         title = f"run {run}: {info.kind}{f' to {song}' if song else ''}"
         title += " (terms of each best)" if terms else ""
-        experiment = experiment_of(info)
-        if experiment is not None:
-            title += f", seed {info.seed}\n{experiment.fitness_label}"
+        title += f", seed {info.seed}\n{kind_of(info).fitness_label}"
         path = plot_fitness(stats.generations, series, output, title, marks=marks)
         store.add_media(run, path, kind=path.suffix.lstrip(".").lower())
     typer.echo(f"wrote {path}")
-
-
-def _dancer_genome(store: RunStore, individual: Individual) -> DancerGenome:
-    kind = store.run(individual.run_id).kind
-    if kind != dancer_evolution.KIND:
-        raise SinewsError(f"run {individual.run_id} evolves {kind}, which this command cannot read")
-    return DancerGenome(individual.genome)
 
 
 def register(app: typer.Typer) -> None:

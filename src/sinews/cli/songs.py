@@ -8,7 +8,7 @@ from typing import Annotated
 import numpy as np
 import typer
 
-from sinews.experiments.dancer_evolution import song_path
+from sinews.experiments.dancers.settings import song_path
 from sinews.music import (
     DEFAULT_DEMO,
     DEMO_NAMES,

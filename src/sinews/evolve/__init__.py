@@ -38,20 +38,24 @@ from sinews.evolve.operators import (
     tournament,
     uniform_crossover,
 )
+from sinews.evolve.registry import STRATEGIES, make_strategy, restore_strategy
 from sinews.evolve.seeds import individual_seeds, strategy_rng
 from sinews.evolve.strategies import GeneticAlgorithm, HybridStrategy, InteractiveStrategy
-from sinews.evolve.strategy import Strategy
+from sinews.evolve.strategy import AskTell, GenomeSpace, Strategy
 
 __all__ = [
     "CROSSOVERS",
     "EVALUATORS",
+    "STRATEGIES",
     "WORST_FITNESS",
     "AltonGA",
+    "AskTell",
     "DaskEvaluator",
     "Evaluator",
     "FitnessError",
     "FitnessSpec",
     "GeneticAlgorithm",
+    "GenomeSpace",
     "HybridStrategy",
     "InteractiveStrategy",
     "PhaseIn",
@@ -67,7 +71,9 @@ __all__ = [
     "gaussian_mutation",
     "individual_seeds",
     "make_evaluator",
+    "make_strategy",
     "parse_weights",
+    "restore_strategy",
     "strategy_rng",
     "tournament",
     "uniform_crossover",

@@ -25,7 +25,7 @@ is mutated instead.
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, Literal, Self
 
@@ -50,7 +50,7 @@ from sinews.control.gp import (
 )
 from sinews.evolve._state import decode_rng, encode_rng
 from sinews.evolve.errors import StrategyError
-from sinews.evolve.strategy import AskTell
+from sinews.evolve.strategy import AskTell, GenomeSpace
 
 __all__ = ["GPStrategy", "GPVariation", "proportionate", "tournament_select"]
 
@@ -298,6 +298,33 @@ class GPStrategy(AskTell[list[Program]]):
 
     def _decode_population(self, data: Any) -> list[Program]:
         return [parse_program(text, self.pset) for text in data]
+
+    @classmethod
+    def build(
+        cls,
+        *,
+        population_size: int,
+        rng: np.random.Generator,
+        genomes: GenomeSpace,
+        options: Mapping[str, Any] | None = None,
+    ) -> Self:
+        """A fresh GP strategy: `GPVariation` fields as ``options``; ``genomes`` gives the
+        primitive set and the trees per program (one per driven joint).
+
+        Raises:
+            StrategyError: no primitive set, an unknown option or a bad value.
+        """
+        if genomes.pset is None:
+            raise StrategyError("a GP strategy needs the run's primitive set")
+        try:
+            variation = GPVariation(**dict(options or {}))
+        except TypeError:
+            known = ", ".join(GPVariation.__dataclass_fields__)
+            raise StrategyError(
+                f"unknown option for strategy 'gp' in {dict(options or {})}; known: {known}"
+            ) from None
+        return cls(population_size=population_size, pset=genomes.pset, n_trees=genomes.n_trees,
+                   rng=rng, variation=variation)  # fmt: skip
 
     @classmethod
     def from_state(cls, state: object) -> Self:

@@ -19,7 +19,8 @@ import dataclasses
 import json
 from abc import ABC, abstractmethod
 from collections.abc import Mapping, Sized
-from typing import Any, ClassVar, Generic, Self, TypeVar, cast
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, ClassVar, Generic, Self, TypeVar
 
 import numpy as np
 import numpy.typing as npt
@@ -28,14 +29,30 @@ from sinews.evolve._state import decode_array, decode_rng, encode_array, encode_
 from sinews.evolve.errors import StrategyError
 from sinews.evolve.operators import Variation
 
-__all__ = ["AskTell", "Strategy"]
+if TYPE_CHECKING:
+    from sinews.control.gp import PrimitiveSet
+
+__all__ = ["AskTell", "GenomeSpace", "Strategy"]
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
 
 Population = TypeVar("Population", bound=Sized)
 
-_REGISTRY: dict[str, type[Strategy]] = {}
+
+@dataclass(frozen=True)
+class GenomeSpace:
+    """What a run's genomes are, which a strategy needs to make its first population.
+
+    Attributes:
+        size: G, genes of a float-vector genome (float strategies).
+        pset: the primitives of a program (GP), or None.
+        n_trees: trees per program (GP).
+    """
+
+    size: int = 0
+    pset: PrimitiveSet | None = None
+    n_trees: int = 1
 
 
 class AskTell(ABC, Generic[Population]):
@@ -229,6 +246,23 @@ class AskTell(ABC, Generic[Population]):
                 picks=np.array(state["picks"] if "picks" in self.takes else [], dtype=np.int64),
             )
 
+    @abstractmethod
+    def genomes(self, population: Population) -> Any:
+        """A population as a run store holds it (see `sinews.store.codec`)."""
+
+    @classmethod
+    @abstractmethod
+    def build(
+        cls,
+        *,
+        population_size: int,
+        rng: np.random.Generator,
+        genomes: GenomeSpace,
+        options: Mapping[str, Any] | None = None,
+    ) -> Self:
+        """A fresh strategy with flat options, as written in a run file (`StrategyError`
+        for an unknown option or a bad value); see `sinews.evolve.make_strategy`."""
+
     @classmethod
     @abstractmethod
     def from_state(cls, state: object) -> Self:
@@ -259,10 +293,6 @@ class Strategy(AskTell[FloatArray]):
     """
 
     own_options: ClassVar[tuple[str, ...]] = ()
-
-    def __init_subclass__(cls, **kwargs: Any) -> None:
-        super().__init_subclass__(**kwargs)
-        _REGISTRY[cls.name] = cls
 
     def __init__(
         self,
@@ -295,53 +325,49 @@ class Strategy(AskTell[FloatArray]):
     # -- checkpoints -------------------------------------------------------------
 
     def options(self) -> dict[str, Any]:
-        """Every option as one flat JSON-safe dict (the inverse of `create`)."""
+        """Every option as one flat JSON-safe dict (the inverse of `build`)."""
         own = {name: getattr(self, name) for name in self.own_options}
         return {**dataclasses.asdict(self.variation), **own}
 
-    @staticmethod
-    def create(
-        name: str,
+    @classmethod
+    def build(
+        cls,
         *,
         population_size: int,
-        genome_size: int,
         rng: np.random.Generator,
+        genomes: GenomeSpace,
         options: Mapping[str, Any] | None = None,
-    ) -> Strategy:
-        """A strategy by name with flat options, as written in a config file.
+    ) -> Self:
+        """This strategy with flat options, as written in a config file.
 
         Args:
-            name: e.g. ``"ga"``, ``"interactive"``, ``"hybrid"``.
             population_size: P.
-            genome_size: G.
             rng: the strategy's generator.
+            genomes: their size G.
             options: `Variation` fields and the strategy's own options, e.g.
                 ``{"mutation_sigma": 0.05, "elites": 2}``.
 
         Raises:
-            StrategyError: unknown strategy, unknown option or a bad value.
+            StrategyError: an unknown option or a bad value.
         """
-        if name not in _REGISTRY:
-            raise StrategyError(f"no strategy called {name!r}; choose from {', '.join(_REGISTRY)}")
-        kind = _REGISTRY[name]
         shared = {f.name for f in dataclasses.fields(Variation)}
         options = dict(options or {})
-        unknown = sorted(set(options) - shared - set(kind.own_options))
+        unknown = sorted(set(options) - shared - set(cls.own_options))
         if unknown:
-            known = ", ".join(sorted(shared | set(kind.own_options)))
+            known = ", ".join(sorted(shared | set(cls.own_options)))
             raise StrategyError(
-                f"unknown option {unknown[0]!r} for strategy {name!r}; known: {known}"
+                f"unknown option {unknown[0]!r} for strategy {cls.name!r}; known: {known}"
             )
         try:
-            return kind(
+            return cls(
                 population_size=population_size,
-                genome_size=genome_size,
+                genome_size=genomes.size,
                 rng=rng,
                 variation=Variation(**{k: v for k, v in options.items() if k in shared}),
                 **{k: v for k, v in options.items() if k not in shared},
             )
         except (TypeError, ValueError):
-            raise StrategyError(f"bad option value for strategy {name!r}: {options}") from None
+            raise StrategyError(f"bad option value for strategy {cls.name!r}: {options}") from None
 
     def _settings_state(self) -> dict[str, Any]:
         return {
@@ -363,25 +389,21 @@ class Strategy(AskTell[FloatArray]):
 
     @classmethod
     def from_state(cls, state: object) -> Self:
-        """Rebuild a strategy (of the class named in ``state``) exactly as it was saved.
+        """Rebuild this strategy exactly as it was saved.
 
         Raises:
-            StrategyError: unknown strategy or a malformed state.
+            StrategyError: a checkpoint of another strategy, or a malformed one.
         """
-        if not isinstance(state, dict) or state.get("strategy") not in _REGISTRY:
-            raise StrategyError("not a strategy checkpoint (unknown or missing 'strategy')")
-        kind = _REGISTRY[state["strategy"]]
-        if not issubclass(kind, cls):
-            raise StrategyError(f"checkpoint holds a {kind.name!r} strategy, not a {cls.__name__}")
+        if not isinstance(state, dict) or state.get("strategy") != cls.name:
+            raise StrategyError(f"not a {cls.name!r} strategy checkpoint")
         try:
-            strategy = Strategy.create(
-                kind.name,
+            strategy = cls.build(
                 population_size=int(state["population_size"]),
-                genome_size=int(state["genome_size"]),
                 rng=decode_rng(state["rng"]),
+                genomes=GenomeSpace(size=int(state["genome_size"])),
                 options=state["options"],
             )
             strategy._restore_cycle(state)
         except (KeyError, TypeError, ValueError):
             raise StrategyError("malformed strategy checkpoint") from None
-        return cast(Self, strategy)
+        return strategy

@@ -10,11 +10,10 @@ exact, a run killed at any moment and resumed gives bit-identical genomes
 and fitness to one that never stopped.
 
 The kind-specific parts are a `Scorer`, which turns a population into
-fitness terms (e.g. `sinews.experiments.dancer_evolution`), and a
-`StrategyKind`, which makes the run's strategy fresh or from a checkpoint:
-`FloatStrategies` for the float-vector strategies of `sinews.evolve`, and one
-for GP programs (`sinews.experiments.gp_runs`). Any strategy with the
-`LoopStrategy` members fits; what it is told comes from its ``takes``.
+fitness terms (e.g. `sinews.experiments.dancers.score`), and the run's
+`GenomeSpace`, from which `Strategies` makes its strategy (any of
+`sinews.evolve.STRATEGIES`) fresh or from a checkpoint. What a strategy is
+told comes from its ``takes``.
 """
 
 from __future__ import annotations
@@ -29,24 +28,30 @@ import numpy as np
 import numpy.typing as npt
 
 from sinews.errors import SinewsError
-from sinews.evolve import FitnessSpec, Strategy, individual_seeds, strategy_rng
+from sinews.evolve import (
+    AskTell,
+    FitnessSpec,
+    GenomeSpace,
+    Strategy,
+    individual_seeds,
+    make_strategy,
+    restore_strategy,
+    strategy_rng,
+)
 from sinews.store import GenerationRecord, Individual, RunStore, ScoreTable
 
 __all__ = [
-    "FloatStrategies",
     "GenerationSummary",
-    "LoopStrategy",
     "Scorer",
     "Scores",
-    "StrategyKind",
+    "Strategies",
     "advance",
     "best_at_full_weight",
     "continue_run",
     "full_weight_bests",
     "full_weight_fitness",
-    "new_strategy",
     "record_picks",
-    "restore_strategy",
+    "run_strategy",
 ]
 
 
@@ -73,55 +78,7 @@ class Scorer(Protocol):
         ...
 
     def __call__(self, genomes: Any, seeds: npt.NDArray[np.int64]) -> Scores:
-        """Score P genomes (as the store holds them, see `LoopStrategy.genomes`) with (P,) seeds."""
-        ...
-
-
-class LoopStrategy(Protocol):
-    """What the loop needs of a strategy (`sinews.evolve.Strategy` and `GPStrategy` have it)."""
-
-    @property
-    def name(self) -> str:
-        """The strategy's name in configs and checkpoints."""
-        ...
-
-    @property
-    def takes(self) -> tuple[str, ...]:
-        """What ``tell`` takes, by keyword: ``"fitness"``, ``"picks"`` or both."""
-        ...
-
-    @property
-    def tell(self) -> Callable[..., None]:
-        """Judge the last population with the keywords named in `takes`."""
-        ...
-
-    @property
-    def parents(self) -> npt.NDArray[np.int64]:
-        """(P, 2) each child's parents in the previous population, -1 for none."""
-        ...
-
-    def ask(self) -> Any:
-        """The next population."""
-        ...
-
-    def genomes(self, population: Any) -> Any:
-        """A population as the run's genome codec stores it."""
-        ...
-
-    def to_bytes(self) -> bytes:
-        """The checkpoint."""
-        ...
-
-
-class StrategyKind(Protocol):
-    """Makes a run's strategy: fresh from its config, or restored from a checkpoint."""
-
-    def new(self, config: Mapping[str, Any], seed: int) -> LoopStrategy:
-        """The strategy a run starts with (``config`` as stored with the run)."""
-        ...
-
-    def restore(self, checkpoint: bytes) -> LoopStrategy:
-        """The strategy exactly as it was when it saved ``checkpoint``."""
+        """Score P genomes (as the store holds them, see `AskTell[Any].genomes`) with (P,) seeds."""
         ...
 
 
@@ -146,53 +103,47 @@ class GenerationSummary:
     seconds: float
 
 
-def new_strategy(config: Mapping[str, Any], *, genome_size: int, seed: int) -> Strategy:
-    """The strategy a run starts with, from the run's config.
-
-    Args:
-        config: needs ``population`` and ``strategy`` (``{"name": ..., "options": {...}}``).
-        genome_size: G.
-        seed: the run seed.
-    """
-    strategy = config["strategy"]
-    return Strategy.create(
-        strategy["name"],
-        population_size=int(config["population"]),
-        genome_size=genome_size,
-        rng=strategy_rng(seed),
-        options=strategy.get("options", {}),
-    )
-
-
 @dataclass(frozen=True)
-class FloatStrategies:
-    """The float-vector strategies (``ga``, ``hybrid``, ``interactive``, ``alton``).
+class Strategies:
+    """Makes a run's strategy: fresh from its stored config, or restored from a checkpoint.
 
     Attributes:
-        size: G, genes per genome.
-        mutation: a mutation strength that overrides the restored strategy's
+        genomes: what the run's genomes are.
+        mutation: a mutation strength that overrides a restored float strategy's
             (the studio's slider), or None.
     """
 
-    size: int
+    genomes: GenomeSpace
     mutation: float | None = None
 
-    def new(self, config: Mapping[str, Any], seed: int) -> Strategy:
-        """The strategy named in ``config`` (see `new_strategy`)."""
-        return new_strategy(config, genome_size=self.size, seed=seed)
+    def new(self, config: Mapping[str, Any], seed: int) -> AskTell[Any]:
+        """The strategy a run starts with (``config`` as stored: ``population`` and
+        ``strategy`` = ``{"name": ..., "options": {...}}``), from the run seed."""
+        strategy = config["strategy"]
+        made: AskTell[Any] = make_strategy(
+            strategy["name"],
+            population_size=int(config["population"]),
+            rng=strategy_rng(seed),
+            genomes=self.genomes,
+            options=strategy.get("options", {}),
+        )
+        return made
 
-    def restore(self, checkpoint: bytes) -> Strategy:
-        """`Strategy.from_bytes`, with `mutation` applied."""
-        strategy = Strategy.from_bytes(checkpoint)
+    def restore(self, checkpoint: bytes) -> AskTell[Any]:
+        """The strategy exactly as it was when it saved ``checkpoint``, `mutation` applied."""
+        strategy = restore_strategy(checkpoint)
         if self.mutation is not None:
+            if not isinstance(strategy, Strategy):
+                raise SinewsError(f"the {strategy.name} strategy has no mutation strength to set")
             strategy.variation = dataclasses.replace(
                 strategy.variation, mutation_sigma=self.mutation
             )
-        return strategy
+        restored: AskTell[Any] = strategy
+        return restored
 
 
 def _tell(
-    strategy: LoopStrategy, fitness: npt.NDArray[np.float64] | None, picks: list[int]
+    strategy: AskTell[Any], fitness: npt.NDArray[np.float64] | None, picks: list[int]
 ) -> None:
     told: dict[str, Any] = {}
     if "fitness" in strategy.takes:
@@ -212,7 +163,7 @@ def advance(
     *,
     scorer: Scorer | None,
     spec: FitnessSpec | None,
-    strategy: LoopStrategy,
+    strategy: AskTell[Any],
     picks: list[int] | None = None,
 ) -> GenerationSummary:
     """Make, score and store the next generation of a run.
@@ -273,7 +224,7 @@ def advance(
     )
 
 
-def restore_strategy(store: RunStore, run_id: int, *, strategies: StrategyKind) -> LoopStrategy:
+def run_strategy(store: RunStore, run_id: int, *, strategies: Strategies) -> AskTell[Any]:
     """The run's strategy: from its last checkpoint, or fresh from its config."""
     info = store.run(run_id)
     last = store.last_generation(run_id)
@@ -286,9 +237,9 @@ def continue_run(
     store: RunStore,
     run_id: int,
     *,
-    scorer: Scorer,
-    spec: FitnessSpec,
-    strategies: StrategyKind,
+    scorer: Scorer | None,
+    spec: FitnessSpec | None,
+    strategies: Strategies,
     generations: int | None = None,
     picks: Callable[[int], Sequence[int]] | None = None,
     on_generation: Callable[[GenerationSummary], None] | None = None,
@@ -305,9 +256,9 @@ def continue_run(
     Args:
         store: the run store.
         run_id: the run.
-        scorer: scores each new generation.
-        spec: combines the terms into fitness.
-        strategies: makes the run's strategy (e.g. ``FloatStrategies(G)``).
+        scorer: scores each new generation (None: a run bred by hand, not scored).
+        spec: combines the terms into fitness (None without a scorer).
+        strategies: makes the run's strategy (e.g. ``Strategies(GenomeSpace(size=G))``).
         generations: a new total, to extend the run (None keeps the stored one).
         picks: ``picks(g)`` gives the individuals of generation g a person
             marked (told with g's fitness when breeding g + 1), for strategies
@@ -328,7 +279,7 @@ def continue_run(
     target = int(store.run(run_id).config["generations"])
     store.set_status(run_id, "running")
     try:
-        strategy = restore_strategy(store, run_id, strategies=strategies)
+        strategy = run_strategy(store, run_id, strategies=strategies)
         while (last := store.last_generation(run_id)) + 1 < target:
             if last >= 0 and "fitness" not in strategy.takes:
                 return
@@ -352,7 +303,7 @@ def record_picks(
     generation: int,
     picks: list[int],
     *,
-    strategies: StrategyKind,
+    strategies: Strategies,
     scorer: Scorer | None = None,
     spec: FitnessSpec | None = None,
 ) -> GenerationSummary:
@@ -370,7 +321,7 @@ def record_picks(
     last = store.last_generation(run_id)
     if generation != last:
         raise SinewsError(f"run {run_id}: picks are for generation {last}, not {generation}")
-    strategy = restore_strategy(store, run_id, strategies=strategies)
+    strategy = run_strategy(store, run_id, strategies=strategies)
     return advance(store, run_id, scorer=scorer, spec=spec, strategy=strategy, picks=picks)
 
 

@@ -2,11 +2,13 @@
 
 Importing this package needs no MuJoCo; building a figure or running a rollout
 does, and raises a `sinews.errors.SinewsError` naming the ``figures`` extra when
-it is missing.
+it is missing (`require_mujoco` is that check, for code outside this package
+that calls MuJoCo directly).
 """
 
 from __future__ import annotations
 
+from sinews.figures._mujoco import require_mujoco
 from sinews.figures.figure import Figure, FigureError
 from sinews.figures.humanoid import HumanoidShape, humanoid, humanoid_mjcf
 from sinews.figures.luxo import LuxoShape, luxo, luxo_mjcf
@@ -26,6 +28,7 @@ __all__ = [
     "humanoid_mjcf",
     "luxo",
     "luxo_mjcf",
+    "require_mujoco",
     "rollout",
     "sensor_columns",
     "snake",

@@ -1,46 +1,44 @@
-"""Motion tasks as data: a figure in a scene, a goal, the terminals a controller sees, style.
+"""The built-in motion tasks (hop to an X, limbo, reach) and `make_task`.
 
 Gritz & Hahn rate a motion by a main goal ("the distance between the figure
-and the X at the end of the time allotment") plus style points. A `Task` holds
-all of that for one task; `TaskMeter` (in `sinews.figures.terms`) measures
-every term for a whole population from the rollout's per-tick sensors. The
-engine has no special cases: a limbo pole is an extra body in the MJCF with a
-contact sensor, a hand is a site with a position sensor, a goal is a tracked
-point and a target, and goal-relative terminals such as ``gx = X − root_x``
-are an affine map of the sensor columns (`Task.input_map`).
+and the X at the end of the time allotment") plus style points. A `Task`
+(in `sinews.figures.task`) holds all of that for one task; `TaskMeter` (in
+`sinews.figures.terms`) measures every term for a whole population from the
+rollout's per-tick sensors. The engine has no special cases: a limbo pole is
+an extra body in the MJCF with a contact sensor, a hand is a site with a
+position sensor, a goal is a tracked point and a target, and goal-relative
+terminals such as ``gx = X − root_x`` are an affine map of the sensor columns
+(`Task.input_map`).
 
-The terms (`sinews.figures.terms.TERMS`) are higher-is-better, as
-`sinews.evolve.fitness` expects; a task weighs them.
+The terms (`TERMS`) are higher-is-better, as `sinews.evolve.fitness` expects;
+a task weighs them. `Goal`, `Task`, `TERMS` and `TaskMeter` are re-exported
+here for callers that import them with the tasks.
 """
 
 from __future__ import annotations
 
-import math
 import xml.etree.ElementTree as ET
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
 from typing import Any
 
-import numpy as np
-import numpy.typing as npt
-
-from sinews.figures._mujoco import require_mujoco
 from sinews.figures.figure import Figure, FigureError
 from sinews.figures.humanoid import humanoid
 from sinews.figures.luxo import luxo
 from sinews.figures.mjcf import fmt
-from sinews.figures.terms import TERMS, TaskMeter
+from sinews.figures.task import STYLE, TERMS, Goal, Task, Wave, standing_height
+from sinews.figures.tasks3d import TASKS_3D
+from sinews.figures.terms import TaskMeter
 
 __all__ = [
     "LIMBO_BOARD_TOP",
     "LIMBO_SHARE",
+    "STYLE",
     "TASKS",
     "TERMS",
     "Goal",
     "Task",
     "TaskMeter",
     "Wave",
-    "all_tasks",
     "humanoid_reach",
     "luxo_hop",
     "luxo_limbo",
@@ -48,176 +46,8 @@ __all__ = [
     "standing_height",
 ]
 
-FloatArray = npt.NDArray[np.float64]
-
-
-@dataclass(frozen=True)
-class Wave:
-    """A wave of the tracked point: the ``distance`` of a `Goal` with a wave is how far the
-    motion falls short of it, m (see `sinews.figures.terms`).
-
-    Over the last ``window`` seconds, the first axis of tracked − target (e.g. the hand's
-    sideways offset from the shoulder) must swing at ``rate`` Hz with at least
-    ``amplitude`` m (the amplitude of its Fourier component at that rate), and the second
-    (e.g. the hand's height over the shoulder) must stay above 0.
-
-    Attributes:
-        rate: Hz.
-        amplitude: m.
-        window: s, at the end of the trial.
-    """
-
-    rate: float = 1.5
-    amplitude: float = 0.1
-    window: float = 1.5
-
-    def __post_init__(self) -> None:
-        if not (self.rate > 0 and self.amplitude > 0 and self.window > 0):
-            raise FigureError("a wave needs a positive rate, amplitude and window")
-
-
-@dataclass(frozen=True)
-class Goal:
-    """Where a point of the figure must get to.
-
-    Three kinds: a **position** (the tracked point on the target); a **direction**
-    (with ``origin``: the angle at the origin between the tracked point and the
-    target, rad — pointing); a **wave** (with ``wave``, see `Wave`).
-
-    Attributes:
-        tracked: sensor columns of the point, one per axis (e.g. ``("root_x",)``).
-        target: per axis a fixed coordinate, m, or a sensor column (a moving target).
-        names: the goal-relative terminal of each axis, target − tracked; or none
-            (e.g. when the task offers the goal in the heading frame among its sensors).
-        radius: the point has arrived within this distance, m (rad for a direction).
-        origin: sensor columns of the origin of a direction goal, one per axis, or none.
-        wave: a wave goal's rate, amplitude and window, or None.
-    """
-
-    tracked: tuple[str, ...]
-    target: tuple[float | str, ...]
-    names: tuple[str, ...]
-    radius: float = 0.05
-    origin: tuple[str, ...] = ()
-    wave: Wave | None = None
-
-    def __post_init__(self) -> None:
-        if not (len(self.tracked) == len(self.target) >= 1):
-            raise FigureError("a goal needs one tracked column, target and name per axis")
-        if len(self.names) not in (0, len(self.tracked)):
-            raise FigureError("a goal needs one tracked column, target and name per axis")
-        if len(self.origin) not in (0, len(self.tracked)):
-            raise FigureError("a direction goal needs one origin column per axis")
-        if self.wave is not None and (self.origin or len(self.tracked) != 2):
-            raise FigureError("a wave goal tracks two axes (swing, height) and has no origin")
-        if not self.radius > 0:
-            raise FigureError(f"the goal radius must be positive, got {self.radius}")
-
-
-@dataclass(frozen=True, eq=False)
-class Task:
-    """A motion task: the scene, the goal, the controller's view and the fitness terms.
-
-    Attributes:
-        name: e.g. ``"luxo-hop"``.
-        figure: the figure with the task's scene additions.
-        goal: where the tracked point must get to.
-        joints: the joints a controller drives; the others hold their neutral angles.
-        sensors: the sensor columns offered to the controller as terminals.
-        weights: full weight of each term (``distance`` first); others are 0.
-        seconds: duration of a trial.
-        max_tilt: the figure has fallen while |root pitch| exceeds this, rad.
-        min_height: ... or while the root is lower than this, m (``root_z`` is
-            measured from the rest pose, so this is usually negative).
-        params: what the task was built with (for configs and titles).
-    """
-
-    name: str
-    figure: Figure
-    goal: Goal
-    joints: tuple[str, ...]
-    sensors: tuple[str, ...]
-    weights: Mapping[str, float]
-    seconds: float = 5.0
-    max_tilt: float = 1.0
-    min_height: float = -math.inf
-    params: Mapping[str, Any] = field(default_factory=dict)
-
-    def __post_init__(self) -> None:
-        unknown = [t for t in self.weights if t not in TERMS]
-        if unknown or next(iter(self.weights), None) != "distance":
-            raise FigureError(f"{self.name}: weights must start with 'distance' and use {TERMS}")
-        for column in (*self.sensors, *self.goal.tracked, *self.goal.target, *self.goal.origin):
-            if isinstance(column, str):
-                self.figure.sensor_index(column)
-        if not self.joints:
-            raise FigureError(f"{self.name}: drive at least one joint")
-        for joint in self.joints:
-            if joint not in self.figure.joints:
-                raise FigureError(f"{self.name}: the figure has no joint {joint!r}")
-
-    @property
-    def terminals(self) -> tuple[str, ...]:
-        """Names of the controller's input columns: the sensors, then the goal-relative ones."""
-        return (*self.sensors, *self.goal.names)
-
-    @property
-    def actuators(self) -> npt.NDArray[np.intp]:
-        """(J,) actuator index of each driven joint."""
-        return np.array([self.figure.joints.index(j) for j in self.joints], dtype=np.intp)
-
-    def input_map(self) -> tuple[FloatArray, FloatArray]:
-        """The affine map from sensor columns to `terminals`: ``sensors @ W + b``.
-
-        Returns:
-            W: (S, V) weights.
-            b: (V,) offsets.
-        """
-        index = self.figure.sensor_index
-        weights = np.zeros((self.figure.n_sensors, len(self.terminals)))
-        offset = np.zeros(len(self.terminals))
-        for v, column in enumerate(self.sensors):
-            weights[index(column), v] = 1.0
-        first = len(self.sensors)
-        if not self.goal.names:
-            return weights, offset
-        for axis, (tracked, target) in enumerate(
-            zip(self.goal.tracked, self.goal.target, strict=True)
-        ):
-            weights[index(tracked), first + axis] -= 1.0
-            if isinstance(target, str):
-                weights[index(target), first + axis] += 1.0
-            else:
-                offset[first + axis] = float(target)
-        return weights, offset
-
-
-def standing_height(figure: Figure) -> float:
-    """How tall the figure stands at rest: the top of its highest geom, m above the floor."""
-    mujoco = require_mujoco()
-    model = figure.model()
-    data = mujoco.MjData(model)
-    mujoco.mj_kinematics(model, data)
-    tops = []
-    for g in range(model.ngeom):
-        if model.geom_bodyid[g] == 0:
-            continue
-        up = data.geom_xmat[g].reshape(3, 3)[2]  # the world z of each local axis
-        size, kind = model.geom_size[g], model.geom_type[g]
-        if kind == mujoco.mjtGeom.mjGEOM_SPHERE:
-            reach = size[0]
-        elif kind == mujoco.mjtGeom.mjGEOM_CAPSULE:
-            reach = abs(up[2]) * size[1] + size[0]
-        else:  # the geom's bounding box
-            reach = float(np.abs(up) @ model.geom_aabb[g, 3:]) + float(up @ model.geom_aabb[g, :3])
-        tops.append(data.geom_xpos[g, 2] + reach)
-    return float(max(tops))
-
 
 # -- the built-in tasks --------------------------------------------------------
-
-STYLE = {"early": 0.2, "still": 0.5, "head": 3.0, "fallen": 2.0, "neutral": 0.1, "energy": 0.0}
-"""Full style weights of the built-in tasks (the main goal ``distance`` weighs 1)."""
 
 LUXO_SENSORS = (
     "time",
@@ -366,15 +196,9 @@ TASKS: Mapping[str, Callable[..., Task]] = {
     "luxo-hop": luxo_hop,
     "luxo-limbo": luxo_limbo,
     "humanoid-reach": humanoid_reach,
+    **TASKS_3D,
 }
-"""The built-in tasks by name."""
-
-
-def all_tasks() -> dict[str, Callable[..., Task]]:
-    """The planar tasks (`TASKS`) and the 3D ones (`sinews.figures.tasks3d.TASKS_3D`)."""
-    from sinews.figures.tasks3d import TASKS_3D  # it builds on this module
-
-    return {**TASKS, **TASKS_3D}
+"""The built-in tasks by name: the planar ones and the 3D ones (`sinews.figures.tasks3d`)."""
 
 
 def make_task(name: str, **options: Any) -> Task:
@@ -383,10 +207,9 @@ def make_task(name: str, **options: Any) -> Task:
     Raises:
         FigureError: unknown task or options.
     """
-    tasks = all_tasks()
-    if name not in tasks:
-        raise FigureError(f"no task called {name!r}; choose from {', '.join(tasks)}")
+    if name not in TASKS:
+        raise FigureError(f"no task called {name!r}; choose from {', '.join(TASKS)}")
     try:
-        return tasks[name](**options)
+        return TASKS[name](**options)
     except TypeError as exc:
         raise FigureError(f"{name}: {exc}") from None

@@ -27,7 +27,7 @@ from sinews.figures.figure import Figure, FigureError
 from sinews.figures.humanoid3d import humanoid3d
 from sinews.figures.luxo3d import luxo3d
 from sinews.figures.mjcf import fmt
-from sinews.figures.tasks import STYLE, Goal, Task, Wave, standing_height
+from sinews.figures.task import STYLE, Goal, Task, Wave, standing_height
 
 __all__ = [
     "ARM_R",
@@ -310,4 +310,4 @@ TASKS_3D: Mapping[str, Callable[..., Task]] = {
     "humanoid3d-touch": humanoid3d_touch,
     "humanoid3d-nose": humanoid3d_nose,
 }
-"""The 3D tasks by name (`sinews.figures.tasks.make_task` finds them too)."""
+"""The 3D tasks by name (`sinews.figures.tasks.TASKS` holds them too)."""

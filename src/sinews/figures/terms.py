@@ -32,22 +32,15 @@ The terms (`TERMS`), each **higher is better** (penalties are ≤ 0), as
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 import numpy.typing as npt
 
 from sinews.figures.figure import Figure, FigureError
-
-if TYPE_CHECKING:
-    from sinews.figures.tasks import Task
+from sinews.figures.task import TERMS, Task
 
 __all__ = ["TERMS", "TaskMeter"]
 
 FloatArray = npt.NDArray[np.float64]
-
-TERMS = ("distance", "early", "still", "head", "fallen", "neutral", "energy", "touch")
-"""Every fitness term a task can weigh; ``distance`` is always the main goal."""
 
 
 class TaskMeter:
@@ -82,7 +75,8 @@ class TaskMeter:
         self._origin = [index(c) for c in goal.origin]
         self._wave = goal.wave
         n = n_individuals
-        self._wave_sums = np.zeros((n, 3))  # Σ y·sin, Σ y·cos, Σ depth below
+        self._wave_sums = np.zeros((n, 4))  # Σ y·sin, Σ y·cos, Σ depth below, Σ y
+        self._wave_basis = np.zeros(2)  # Σ sin, Σ cos
         self._wave_count = 0
         self._count = 0
         self._last_t = 0.0
@@ -138,12 +132,19 @@ class TaskMeter:
             self._wave_sums[:, 0] += swing * np.sin(phase)
             self._wave_sums[:, 1] += swing * np.cos(phase)
             self._wave_sums[:, 2] += np.maximum(0.0, -offset[:, 1])
+            self._wave_sums[:, 3] += swing
+            self._wave_basis += (np.sin(phase), np.cos(phase))
             self._wave_count += 1
-        if self._wave_count == 0:
+        n = self._wave_count
+        if n == 0:
             return np.full(len(offset), wave.amplitude)
-        amplitude = 2.0 * np.hypot(self._wave_sums[:, 0], self._wave_sums[:, 1])
-        amplitude /= self._wave_count
-        below = self._wave_sums[:, 2] / self._wave_count
+        # the swing about its mean: a hand held still off to the side is no wave (over a
+        # window of a fractional number of periods its offset would leak into the sum)
+        mean = self._wave_sums[:, 3] / n
+        sine = self._wave_sums[:, 0] - mean * self._wave_basis[0]
+        cosine = self._wave_sums[:, 1] - mean * self._wave_basis[1]
+        amplitude = 2.0 * np.hypot(sine, cosine) / n
+        below = self._wave_sums[:, 2] / n
         return np.maximum(0.0, wave.amplitude - amplitude) + below
 
     @property

@@ -7,7 +7,7 @@
    window early.
 2. Levels in dB relative to the song's loudness reference, the 99th
    percentile of all its band levels, so that mastering loudness cancels out.
-3. Per-band onsets and adaptive triggers (`onsets`); the mean onset is the
+3. Per-band onsets and adaptive triggers (`onsets`); the onsets pooled by register are the
    envelope that tempo and beats are tracked on (`beats`).
 """
 
@@ -23,7 +23,7 @@ import numpy as np
 import numpy.typing as npt
 
 from sinews.limits import check_number
-from sinews.music.beats import beat_phase, estimate_tempo, onset_envelope, track_beats
+from sinews.music.beats import beat_phase, onset_envelope, track
 from sinews.music.decode import Audio, check_readable_file, load_audio
 from sinews.music.errors import AudioError
 from sinews.music.features import ANALYSIS_VERSION, MusicFeatures
@@ -109,9 +109,7 @@ def analyse(
     onset_levels = _relative(onset_abs, reference, ONSET_FLOOR_DB, silent)
     onset = onset_strength(onset_levels, fps)
     triggers = adaptive_triggers(onset, onset_levels, fps, _TRIGGERS)
-    envelope = onset_envelope(onset)
-    tempo = bpm if bpm is not None else estimate_tempo(envelope, fps)
-    beats = track_beats(envelope, fps, tempo) if math.isfinite(tempo) else np.zeros(0)
+    tempo, beats = track(onset_envelope(onset, band_centres(edges)), fps, bpm)
     tempo = tempo if math.isfinite(tempo) else 0.0
     return MusicFeatures(
         fps=float(fps),

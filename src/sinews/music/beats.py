@@ -1,80 +1,214 @@
-"""Tempo and beat tracking by dynamic programming (Ellis 2007, "Beat Tracking by
-Dynamic Programming", J. New Music Research 36(1)).
+"""Tempo and beat tracking: dynamic programming (Ellis 2007, "Beat Tracking by Dynamic
+Programming", J. New Music Research 36(1)) at the metrical level a listener taps.
 
-1. The onset envelope is the mean per-band onset strength.
-2. Tempo: the (slightly blurred) envelope's autocorrelation at a beat period
-   plus, with weights 1/2 and 1/4, at two and four periods (half a bar and a
-   bar in 4/4; Ellis's "TPS2" idea taken one step further), weighted by a
-   log-Gaussian prior around 120 BPM, one octave wide.
-3. Beats: the beat sequence maximising the (Gaussian-smoothed) envelope at the
-   beats plus a penalty ``-tightness * log(interval / period)**2`` for each
-   interval, found by dynamic programming, then stripped of weak beats at
-   the ends (as in librosa's implementation of the same method).
+1. The onset envelope: per-band onset strength pooled into five frequency groups, each
+   scaled to unit standard deviation, averaged (`onset_envelope`).
+2. Tempo candidates: the (slightly blurred) envelope's autocorrelation at a beat period
+   plus, with weights 1/2 and 1/4, at two and four periods (half a bar and a bar in 4/4),
+   no prior. The strongest period and its relatives by 1/4, 1/3, 1/2, 2/3, 3/4, 4/3, 3/2, 2, 3
+   and 4 (the octave, 3:2 and 4:3 errors of syncopated and dotted patterns) are candidates,
+   each refined to its own nearest autocorrelation peak.
+3. Each candidate is tracked (step 4) and scored by how strongly its beats land on
+   onsets: the mean of the normalised envelope at the beats, over its mean everywhere,
+   times the fourth root of the number of beats (`_fit`), times a tempo prior that is
+   flat over 90-180 BPM (where listeners tap) and falls off as a Gaussian (sigma 0.3
+   octave) outside. The best candidate is the tempo.
+4. Beats: the beat sequence maximising the (Gaussian-smoothed) envelope at the beats
+   plus a penalty ``-tightness * log(interval / period)**2`` for each interval, found by
+   dynamic programming (compiled with numba), then stripped of weak beats at the ends
+   (as in librosa's implementation of the same method).
 """
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
 import numpy.typing as npt
 import scipy.interpolate
 import scipy.ndimage
-import scipy.signal
+from numba import njit
 
-__all__ = ["beat_phase", "estimate_tempo", "onset_envelope", "track_beats"]
+__all__ = [
+    "beat_phase",
+    "estimate_tempo",
+    "onset_envelope",
+    "tempo_candidates",
+    "track",
+    "track_beats",
+]
 
-PRIOR_BPM = 120.0
-PRIOR_OCTAVES = 1.0
 MIN_BPM = 40.0
 MAX_BPM = 240.0
-TIGHTNESS = 100.0
+TAP_LOW_BPM = 90.0
+TAP_HIGH_BPM = 180.0
+"""Listeners tap in this range unless the music says otherwise; the prior is flat inside."""
+PRIOR_OCTAVES = 0.3
+"""Outside the tapping range the prior is a Gaussian in log2 tempo with this sigma."""
+TIGHTNESS = 300.0
+"""Penalty weight of an interval off the period (librosa and Ellis use 100; 300 slips
+less between beat and off-beat on the corpus, see docs/beats.md)."""
 TEMPO_SMOOTH_S = 0.025
 """The envelope is blurred this much (Gaussian sigma) before its autocorrelation,
 so that a period falling between two frames still makes one clear peak."""
 _METRE_WEIGHTS = ((1, 1.0), (2, 0.5), (4, 0.25))
-"""A period also scores by its double and quadruple (half bar and bar in 4/4),
-which settles the 3:2 and 2:1 ambiguities of syncopated patterns."""
+"""A period also scores by its double and quadruple (half bar and bar in 4/4)."""
+_RELATIVES = (1.0, 0.5, 2.0, 2.0 / 3.0, 1.5, 0.75, 4.0 / 3.0, 0.25, 4.0, 1.0 / 3.0, 3.0)
+"""Tempo ratios tried against the strongest autocorrelation period."""
+FIT_COUNT_POWER = 0.25
+"""A candidate's fit is its beats' mean envelope times their count to this power."""
+_REFINE = 0.06
+"""A relative's period is refined to the autocorrelation peak within this fraction."""
 
 
-def onset_envelope(onset: npt.NDArray[np.float32]) -> npt.NDArray[np.float64]:
-    """(T,) mean onset strength over the bands of a (T, B) onset array."""
-    return onset.mean(axis=1, dtype=np.float64)
+ENVELOPE_SPLITS_HZ = (120.0, 300.0, 1000.0, 3000.0)
+"""The bands are pooled into five groups split at these frequencies for the envelope."""
 
 
-def estimate_tempo(envelope: npt.NDArray[np.float64], fps: float) -> float:
-    """Tempo in BPM from the envelope's autocorrelation and a prior around 120 BPM.
+def onset_envelope(
+    onset: npt.NDArray[np.float32], centres_hz: npt.NDArray[np.float64] | None = None
+) -> npt.NDArray[np.float64]:
+    """(T,) onset envelope of a (T, B) onset array.
 
-    Candidate periods run from `MAX_BPM` to `MIN_BPM` in steps of 1/20 frame;
-    the autocorrelation between whole-frame lags is a cubic spline.
-
-    Args:
-        envelope: (T,) onset envelope.
-        fps: frames per second.
-
-    Returns:
-        The tempo, or NaN when the envelope is flat (no onsets) or too short.
+    With band centres, the bands are pooled into frequency groups (`ENVELOPE_SPLITS_HZ`),
+    each group's mean onset is scaled to unit standard deviation, and the groups are
+    averaged: no one register (a hi-hat on every off-beat, an off-beat bass) outvotes
+    the others. Without centres: the plain mean over bands.
     """
+    if centres_hz is None:
+        return onset.mean(axis=1, dtype=np.float64)
+    edges = (0.0, *ENVELOPE_SPLITS_HZ, math.inf)
+    total = np.zeros(onset.shape[0])
+    for lo, hi in itertools.pairwise(edges):
+        members = (centres_hz >= lo) & (centres_hz < hi)
+        if not members.any():
+            continue
+        group = onset[:, members].mean(axis=1, dtype=np.float64)
+        std = group.std()
+        if std > 0:
+            total += group / std
+    return total / (len(edges) - 1)
+
+
+def _comb(envelope: npt.NDArray[np.float64], fps: float) -> scipy.interpolate.CubicSpline | None:
+    """The envelope's autocorrelation as a cubic spline of the lag (None if flat or short)."""
     smooth = scipy.ndimage.gaussian_filter1d(envelope, TEMPO_SMOOTH_S * fps)
     centred = smooth - smooth.mean()
     n = len(centred)
     if not np.any(centred) or n < 60.0 * fps / MIN_BPM + 2:
-        return math.nan
+        return None
     spectrum = np.fft.rfft(centred, 2 * n)
     acf = np.fft.irfft(spectrum * np.conj(spectrum))[:n] / np.arange(n, 0, -1)
     longest = max(m for m, _ in _METRE_WEIGHTS) * 60.0 * fps / MIN_BPM
     reach = min(n, math.ceil(longest) + 2)
-    spline = scipy.interpolate.CubicSpline(np.arange(reach), np.maximum(acf[:reach], 0.0))
+    return scipy.interpolate.CubicSpline(np.arange(reach), np.maximum(acf[:reach], 0.0))
+
+
+def _metre_score(
+    acf: scipy.interpolate.CubicSpline, periods: npt.NDArray[np.float64]
+) -> npt.NDArray[np.float64]:
+    """Autocorrelation at 1, 2 and 4 periods, weighted by `_METRE_WEIGHTS`."""
+    last = float(acf.x[-1])
+    total = np.zeros(len(periods))
+    for m, weight in _METRE_WEIGHTS:
+        lags = m * periods
+        total += weight * np.where(lags < last, acf(np.minimum(lags, last)), 0.0)
+    return total
+
+
+def tempo_candidates(envelope: npt.NDArray[np.float64], fps: float) -> list[float]:
+    """Candidate tempi (BPM): the strongest metre-comb period and its relatives.
+
+    Returns:
+        Distinct candidates inside [`MIN_BPM`, `MAX_BPM`], strongest first; empty when
+        the envelope is flat or shorter than the slowest period.
+    """
+    acf = _comb(envelope, fps)
+    if acf is None:
+        return []
     periods = np.arange(60.0 * fps / MAX_BPM, 60.0 * fps / MIN_BPM, 0.05)
-    bpms = 60.0 * fps / periods
-    prior = np.exp(-0.5 * (np.log2(bpms / PRIOR_BPM) / PRIOR_OCTAVES) ** 2)
-    comb = sum(
-        weight * np.where(m * periods < reach - 1, spline(np.minimum(m * periods, reach - 1)), 0.0)
-        for m, weight in _METRE_WEIGHTS
-    )
-    score = comb * prior
+    score = _metre_score(acf, periods)
     best = int(np.argmax(score))
-    return math.nan if score[best] <= 0.0 else float(bpms[best])
+    if score[best] <= 0.0:
+        return []
+    found: list[float] = []
+    for ratio in _RELATIVES:
+        centre = periods[best] / ratio
+        near = np.flatnonzero(np.abs(periods / centre - 1.0) <= _REFINE)
+        if len(near) == 0:
+            continue
+        k = int(near[np.argmax(score[near])])
+        bpm = float(60.0 * fps / periods[k])
+        if all(abs(bpm / other - 1.0) > 0.02 for other in found):
+            found.append(bpm)
+    return found
+
+
+def tempo_prior(bpm: float) -> float:
+    """1 over [`TAP_LOW_BPM`, `TAP_HIGH_BPM`], a log2 Gaussian of `PRIOR_OCTAVES` outside."""
+    if bpm < TAP_LOW_BPM:
+        octaves = math.log2(TAP_LOW_BPM / bpm)
+    elif bpm > TAP_HIGH_BPM:
+        octaves = math.log2(bpm / TAP_HIGH_BPM)
+    else:
+        return 1.0
+    return math.exp(-0.5 * (octaves / PRIOR_OCTAVES) ** 2)
+
+
+def estimate_tempo(envelope: npt.NDArray[np.float64], fps: float) -> float:
+    """Tempo in BPM at the level a listener taps (see `track`); NaN for a flat envelope."""
+    return track(envelope, fps)[0]
+
+
+def track(
+    envelope: npt.NDArray[np.float64], fps: float, bpm: float | None = None
+) -> tuple[float, npt.NDArray[np.float64]]:
+    """Tempo and beats of an onset envelope.
+
+    Args:
+        envelope: (T,) onset envelope; frame k is at ``k / fps`` seconds.
+        fps: frames per second.
+        bpm: the tempo to follow, if known; otherwise each candidate of
+            `tempo_candidates` is tracked and the best fit, weighted by the prior,
+            is kept.
+
+    Returns:
+        ``(tempo, beats)``: the tempo in BPM (NaN when there is none: a flat or too
+        short envelope) and (K,) float64 beat times in seconds.
+    """
+    if bpm is not None:
+        return bpm, track_beats(envelope, fps, bpm)
+    candidates = tempo_candidates(envelope, fps)
+    if not candidates:
+        return math.nan, np.zeros(0)
+    local = _normalised(envelope)
+    mean = float(local.mean())
+    best: tuple[float, float, npt.NDArray[np.float64]] | None = None
+    for tempo in candidates:
+        frames = _beat_frames(local, 60.0 * fps / tempo)
+        if len(frames) < 2:
+            continue
+        fit = _fit(local, frames) / mean * tempo_prior(tempo)
+        if best is None or fit > best[0]:
+            best = (fit, tempo, frames.astype(np.float64) / fps)
+    if best is None:
+        return math.nan, np.zeros(0)
+    return best[1], best[2]
+
+
+def _fit(local: npt.NDArray[np.float64], frames: npt.NDArray[np.int64]) -> float:
+    """How well beats land on onsets: their mean envelope times the fourth root of their count.
+
+    The mean alone favours the slower of two levels that fit (its beats are the strong
+    half); the root of the count leans mildly to the faster one.
+    """
+    return float(local[frames].mean()) * len(frames) ** FIT_COUNT_POWER
+
+
+def _normalised(envelope: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+    std = envelope.std()
+    return envelope / std if std > 0 else envelope
 
 
 def track_beats(
@@ -90,43 +224,49 @@ def track_beats(
     Returns:
         (K,) float64 beat times in seconds, increasing; empty for a flat envelope.
     """
-    std = envelope.std()
-    if std == 0.0 or len(envelope) < 2:
+    if envelope.std() == 0.0 or len(envelope) < 2:
         return np.zeros(0)
-    period = 60.0 * fps / bpm
+    return _beat_frames(_normalised(envelope), 60.0 * fps / bpm).astype(np.float64) / fps
+
+
+def _beat_frames(normalised: npt.NDArray[np.float64], period: float) -> npt.NDArray[np.int64]:
+    """Beat frames of the DP tracker at ``period`` frames on a normalised envelope."""
     kernel_half = max(1, round(period))
     kernel = np.exp(-0.5 * (np.arange(-kernel_half, kernel_half + 1) * 32.0 / period) ** 2)
-    local = scipy.signal.convolve(envelope / std, kernel, mode="same")
-    back, score = _dynamic_programme(local, period)
+    # "same" by hand: np.convolve's "same" is as long as the kernel when the song is shorter
+    local = np.convolve(normalised, kernel)[kernel_half : kernel_half + len(normalised)]
+    offsets = np.arange(-round(2 * period), -round(period / 2) + 1)
+    penalty = -TIGHTNESS * np.log(-offsets / period) ** 2
+    back, score = _dynamic_programme(local, offsets, penalty, 0.01 * float(local.max()))
     frames = _backtrack(back, score)
-    frames = _trim_weak(frames, local)
-    return frames.astype(np.float64) / fps
+    return _trim_weak(frames, local)
 
 
-def _dynamic_programme(
-    local: npt.NDArray[np.float64], period: float
-) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.float64]]:
+@njit(cache=True)
+def _dynamic_programme(local, offsets, penalty, clear):  # type: ignore[no-untyped-def]
     """Best cumulative score of a beat sequence ending at each frame, and its predecessor.
 
     Predecessors lie between two and half a period back; one before the song's
     start counts as a virtual beat of score 0. Until the first clear onset
-    (1 % of the strongest) no frame links back, so the sequence starts there.
+    (``clear``) no frame links back, so the sequence starts there.
     A predecessor of -1 ends a backtrack.
     """
     n = len(local)
-    offsets = np.arange(-round(2 * period), -round(period / 2) + 1)
-    penalty = -TIGHTNESS * np.log(-offsets / period) ** 2
     score = np.zeros(n)
     back = np.full(n, -1, dtype=np.int64)
     started = False
-    clear = 0.01 * local.max()
     for t in range(n):
-        preds = t + offsets
-        candidates = penalty + np.where(preds >= 0, score[np.maximum(preds, 0)], 0.0)
-        best = int(np.argmax(candidates))
-        score[t] = local[t] + candidates[best]
+        best_value = -np.inf
+        best_pred = -1
+        for j in range(len(offsets)):
+            pred = t + offsets[j]
+            value = penalty[j] + (score[pred] if pred >= 0 else 0.0)
+            if value > best_value:
+                best_value = value
+                best_pred = pred
+        score[t] = local[t] + best_value
         if started or local[t] >= clear:
-            back[t] = max(int(preds[best]), -1)
+            back[t] = max(best_pred, -1)
             started = True
     return back, score
 

@@ -19,9 +19,10 @@ import numpy as np
 import numpy.typing as npt
 import soundfile as sf
 
+from sinews.ffmpeg import find_ffmpeg
 from sinews.limits import MAX_SECONDS  # the longest song, checked before decoding
 from sinews.music.errors import AudioError
-from sinews.music.ffmpeg import FfmpegFailed, decode_with_ffmpeg, find_ffmpeg
+from sinews.music.ffmpeg import FfmpegFailed, decode_with_ffmpeg
 
 __all__ = ["MAX_SECONDS", "MIN_SECONDS", "Audio", "check_readable_file", "load_audio", "save_wav"]
 

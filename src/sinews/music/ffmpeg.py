@@ -1,15 +1,11 @@
 """Decoding through an ffmpeg executable, for formats soundfile cannot read (M4A/AAC…).
 
-The executable is, in order: the ``SINEWS_FFMPEG`` environment variable (a path,
-or ``off`` to disable ffmpeg), the binary bundled with ``imageio-ffmpeg``, or an
-``ffmpeg`` on the ``PATH``.
+`sinews.ffmpeg.find_ffmpeg` says which executable.
 """
 
 from __future__ import annotations
 
 import io
-import os
-import shutil
 import subprocess
 from pathlib import Path
 
@@ -17,29 +13,11 @@ import numpy as np
 import numpy.typing as npt
 import soundfile as sf
 
-__all__ = ["FFMPEG_ENV", "FfmpegFailed", "decode_with_ffmpeg", "find_ffmpeg"]
-
-FFMPEG_ENV = "SINEWS_FFMPEG"
+__all__ = ["FfmpegFailed", "decode_with_ffmpeg"]
 
 
 class FfmpegFailed(Exception):
     """ffmpeg could not decode a file; the message is ffmpeg's last error line."""
-
-
-def find_ffmpeg() -> str | None:
-    """Path of the ffmpeg executable to use, or None when there is none (or it is off)."""
-    configured = os.environ.get(FFMPEG_ENV, "").strip()
-    if configured.lower() == "off":
-        return None
-    if configured:
-        return configured if Path(configured).is_file() else None
-    try:
-        import imageio_ffmpeg
-
-        bundled: str = imageio_ffmpeg.get_ffmpeg_exe()
-        return bundled
-    except (ImportError, RuntimeError):
-        return shutil.which("ffmpeg")
 
 
 def decode_with_ffmpeg(

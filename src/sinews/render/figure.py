@@ -15,24 +15,20 @@ The camera shows the whole motion when it is short, or when it stays on the
 task's scene; when the figure travels more than three times its own size,
 it follows the figure at a fixed scale (see `FigurePainter`).
 Still pictures (PNG, SVG) are strobe images: poses at even times, older ones
-fainter, with the whole path in view.
+fainter, with the whole path in view. `sinews.render.figure_media` writes
+the files.
 """
 
 from __future__ import annotations
 
 import math
-import os
-from collections.abc import Iterator, Sequence
-from pathlib import Path
+from collections.abc import Sequence
 
 import numpy as np
 import numpy.typing as npt
 
-from sinews.figures import Figure
-from sinews.render._output import atomic_output, suffix_of
 from sinews.render.canvas import Canvas, Color, Point, shade
 from sinews.render.errors import RenderError
-from sinews.render.ffmpeg import encode_mp4
 from sinews.render.figure_geometry import (
     CAPSULE,
     ELLIPSOID,
@@ -41,24 +37,13 @@ from sinews.render.figure_geometry import (
 )
 from sinews.render.figure_panel import NetPanel, draw_panel
 from sinews.render.figure_scene import TaskScene, draw_scene_back, draw_scene_front
-from sinews.render.frames import paint_frames
-from sinews.render.raster import RasterCanvas
-from sinews.render.style import Style, default_colors
-from sinews.render.svg import SvgCanvas
-from sinews.render.view import View
+from sinews.render.style import Style, as_colors, default_colors
+from sinews.render.view import Size, View, pixels
 from sinews.trajectory import Trajectory
 
-__all__ = [
-    "FigureGeometry",
-    "FigurePainter",
-    "NetPanel",
-    "TaskScene",
-    "render_figure",
-    "render_figure_sequence",
-]
+__all__ = ["FigureGeometry", "FigurePainter", "NetPanel", "TaskScene"]
 
 FloatArray = npt.NDArray[np.float64]
-Size = int | tuple[int, int]
 
 _START_COLOR: Color = (46, 139, 87)
 _DISTANCE_COLOR: Color = (200, 60, 40)
@@ -67,13 +52,10 @@ _PANEL_SHARE = 0.22  # of the canvas height
 _GROUND_SHARE = 0.2  # of the figure area, below the ground line
 
 
-def _pixels(size: Size) -> tuple[int, int]:
-    width, height = (size, size) if isinstance(size, int) else size
-    return int(width) + int(width) % 2, int(height) + int(height) % 2
-
-
 class FigurePainter:
-    """Draws frames of one figure's trajectory (views and colours worked out once).
+    """Draws frames of one figure's trajectory; views and colours are worked out once.
+
+    A `LayeringPainter`: several frames make a strobe picture.
 
     Args:
         geometry: the figure's geoms.
@@ -113,20 +95,30 @@ class FigurePainter:
         self.geometry, self.traj, self.panel, self.title = geometry, traj, panel, title
         self.scene = scene
         self.style = style or Style()
-        self.width, self.height = _pixels(size)
+        self.width, self.height = pixels(size, even=True)
         self.poses = geometry.poses(traj.qpos)
         self.root_x = np.asarray(traj.qpos, dtype=np.float64)[:, 0]
         self._panel_px = round(_PANEL_SHARE * self.height) if panel is not None else 0
         self.views = self._camera(geometry.extents(self.poses), still)
         colors = default_colors(len(geometry.figure.body_names)).astype(np.float64)
-        self._fill = [_color(c) for c in colors[geometry.body]]
-        self._joint_colors = [_color(c) for c in colors[geometry.joint_bodies]]
+        self._fill = as_colors(colors[geometry.body])
+        self._joint_colors = as_colors(colors[geometry.joint_bodies])
         self._text_px = max(9.0, 0.045 * min(self.width, self.height))
+
+    @property
+    def size(self) -> tuple[int, int]:
+        """(width, height), pixels."""
+        return (self.width, self.height)
 
     @property
     def n_frames(self) -> int:
         """Frames of the trajectory."""
         return self.traj.n_frames
+
+    @property
+    def fps(self) -> float:
+        """The trajectory's frame rate."""
+        return self.traj.fps
 
     def _camera(self, boxes: FloatArray, still: bool) -> list[View]:
         """One view per frame: fixed on the whole motion, or following the figure.
@@ -226,8 +218,8 @@ class FigurePainter:
         background = np.asarray(self.style.background, dtype=np.float64)
         for k, kind in enumerate(self.geometry.kinds.tolist()):
             fill_rgb = np.asarray(self._fill[k], dtype=np.float64) * (1 - fade) + background * fade
-            fill = _color(fill_rgb)
-            rim = _color(fill_rgb * 0.55 * (1 - fade) + background * fade)
+            (fill,) = as_colors(fill_rgb)
+            (rim,) = as_colors(fill_rgb * 0.55 * (1 - fade) + background * fade)
             c, sx, sz, r = center[k], ax[k] * half[k, 0], az[k] * half[k, 1], half[k, 2]
             if kind in (CAPSULE, SPHERE):
                 ends = view.to_px(np.array([c - sz, c + sz]))
@@ -286,95 +278,3 @@ def _smooth(values: FloatArray, fps: float) -> FloatArray:
     window = max(1, round(fps / 4))
     kernel = np.ones(2 * window + 1) / (2 * window + 1)
     return np.convolve(np.pad(values, window, mode="edge"), kernel, mode="valid")
-
-
-def _color(rgb: FloatArray) -> Color:
-    r, g, b = (int(v) for v in np.clip(np.round(rgb), 0, 255).tolist())
-    return (r, g, b)
-
-
-def _frames(painter: FigurePainter, step: int) -> Iterator[npt.NDArray[np.uint8]]:
-    return paint_frames(painter.draw, (painter.width, painter.height), painter.n_frames, step=step)
-
-
-def _step(traj: Trajectory, fps: float | None) -> int:
-    if fps is not None and not fps > 0:
-        raise RenderError(f"fps must be positive, got {fps}")
-    return 1 if fps is None else max(1, math.ceil(traj.fps / fps - 1e-9))
-
-
-def render_figure_sequence(
-    painters: Sequence[FigurePainter], path: str | os.PathLike[str], *, fps: float | None = None
-) -> Path:
-    """Write clips one after another as one H.264 MP4 (e.g. the best of every generation).
-
-    Args:
-        painters: one per clip, all of one size and frame rate.
-        path: an ``.mp4`` file.
-        fps: highest frame rate wanted (default: the trajectories').
-
-    Returns:
-        ``path``.
-    """
-    suffix_of(path, (".mp4",))
-    if not painters:
-        raise RenderError("no clips to render")
-    first = painters[0]
-    if any((p.width, p.height, p.traj.fps) != (first.width, first.height, first.traj.fps)
-           for p in painters):  # fmt: skip
-        raise RenderError("every clip needs the same size and frame rate")
-    step = _step(first.traj, fps)
-    with atomic_output(path) as tmp:
-        frames = (frame for painter in painters for frame in _frames(painter, step))
-        encode_mp4(frames, tmp, size=(first.width, first.height), fps=first.traj.fps / step)
-    return Path(path)
-
-
-def render_figure(
-    figure: Figure | FigureGeometry,
-    traj: Trajectory,
-    path: str | os.PathLike[str],
-    *,
-    size: Size = (480, 360),
-    panel: NetPanel | None = None,
-    title: str | None = None,
-    fps: float | None = None,
-    strobe: int = 8,
-    style: Style | None = None,
-    scene: TaskScene | None = None,
-) -> Path:
-    """Draw a figure's motion: an ``.mp4`` video, or a ``.png``/``.svg`` strobe picture.
-
-    Args:
-        figure: the figure (or its geometry, to reuse it).
-        traj: its motion, with ``qpos``.
-        path: the file; its suffix chooses the format.
-        size: pixels, an int for a square or (width, height).
-        panel: the controller's net to draw above the figure.
-        title: text in the corner.
-        fps: highest video frame rate (default: the trajectory's).
-        strobe: poses in a still picture (evenly spaced, the last frame last).
-        style: colours.
-        scene: the task's marks.
-
-    Returns:
-        ``path``.
-    """
-    suffix = suffix_of(path, (".mp4", ".png", ".svg"))
-    geometry = figure if isinstance(figure, FigureGeometry) else FigureGeometry.of(figure)
-    painter = FigurePainter(geometry, traj, size=size, panel=panel, title=title, style=style,
-                            still=suffix != ".mp4", scene=scene)  # fmt: skip
-    if suffix == ".mp4":
-        return render_figure_sequence([painter], path, fps=fps)
-    frames = np.unique(np.linspace(0, traj.n_frames - 1, max(1, strobe)).round().astype(int))
-    if suffix == ".svg":
-        vector = SvgCanvas(painter.width, painter.height)
-        painter.draw(vector, frames.tolist())
-        with atomic_output(path) as tmp:
-            tmp.write_text(vector.to_string(), encoding="utf-8")
-        return Path(path)
-    raster = RasterCanvas(painter.width, painter.height)
-    painter.draw(raster, frames.tolist())
-    with atomic_output(path) as tmp:
-        raster.image().save(tmp, format="PNG")
-    return Path(path)

@@ -14,8 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from sinews.figures import Figure
-from sinews.figures._mujoco import require_mujoco
+from sinews.figures import Figure, require_mujoco
 from sinews.render.errors import RenderError
 
 __all__ = ["BOX", "CAPSULE", "CYLINDER", "ELLIPSOID", "SPHERE", "FigureGeometry", "GeomPoses"]

@@ -10,6 +10,7 @@ target). Sites move with the figure, so they are read from the frame's poses.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 import numpy.typing as npt
@@ -18,7 +19,10 @@ from sinews.render.canvas import Canvas, Color, shade
 from sinews.render.errors import RenderError
 from sinews.render.view import View
 
-__all__ = ["TaskScene", "draw_scene_back", "draw_scene_front"]
+if TYPE_CHECKING:
+    from sinews.figures.task import Task
+
+__all__ = ["TaskScene", "draw_scene_back", "draw_scene_front", "scene_of"]
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -106,3 +110,31 @@ def draw_scene_front(
     if scene.tracked_site is not None:
         x, y = (float(v) for v in view.to_px(sites[scene.tracked_site]))
         canvas.circle((x, y), 0.45 * radius, _TRACKED, shade(_TRACKED, 0.6), 1.0)
+
+
+def scene_of(task: Task) -> TaskScene:
+    """The marks a task's picture needs, read from its goal and its touch bodies.
+
+    A goal along the floor (``root_x``) is an X there; a goal at a fixed point
+    is that point; a goal that is a site (the nose) marks the site. The site
+    that must reach it is marked too, and every touch body (a limbo bar)
+    gets a post from the floor.
+    """
+    goal, figure = task.goal, task.figure
+
+    def site(column: str) -> str | None:
+        name = column.partition("_")[2]
+        return name if name in figure.sites else None
+
+    fixed = [t for t in goal.target if not isinstance(t, str)]
+    model = figure.model()
+    posts = tuple(
+        (float(model.body(b).pos[0]), float(model.body(b).pos[2])) for b in figure.touch_bodies
+    )
+    return TaskScene(
+        cross=float(fixed[0]) if goal.tracked == ("root_x",) and fixed else None,
+        posts=posts,
+        target=(float(fixed[0]), float(fixed[1])) if len(fixed) == 2 else None,
+        target_site=site(str(goal.target[0])) if not fixed else None,
+        tracked_site=site(goal.tracked[0]),
+    )

@@ -15,9 +15,10 @@ import numpy as np
 import numpy.typing as npt
 
 from sinews.render.canvas import Canvas
+from sinews.render.painting import Painter
 from sinews.render.raster import RasterCanvas
 
-__all__ = ["paint_frames", "reporting_progress"]
+__all__ = ["iter_frames", "paint_frames", "reporting_progress"]
 
 Report = Callable[[int, int], None]
 """Called with (frames done, frames in all) after each frame."""
@@ -51,3 +52,8 @@ def paint_frames(
         yield canvas.to_array()
         if report is not None:
             report(done, len(frames))
+
+
+def iter_frames(painter: Painter, *, step: int = 1) -> Iterator[npt.NDArray[np.uint8]]:
+    """Every ``step``-th frame of ``painter`` as (H, W, 3) uint8 pictures (see `paint_frames`)."""
+    return paint_frames(painter.draw, painter.size, painter.n_frames, step=step)

@@ -1,27 +1,26 @@
-"""Trajectory → picture or animation files: PNG, SVG, GIF, MP4 (with sound)."""
+"""Spring-mass motion (dancers, scenes) → picture or animation files: PNG, SVG, GIF, MP4.
+
+Each ``save_*`` function makes a `FramePainter` fitted to the motion and hands
+it to the one writer (`sinews.render.writer.write`); `render` picks the
+function by the file's suffix.
+"""
 
 from __future__ import annotations
 
 import inspect
-import math
 import os
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-import numpy.typing as npt
-from PIL import Image
-
-from sinews.render._output import atomic_output, suffix_of
+from sinews.render._output import suffix_of
 from sinews.render.errors import RenderError
-from sinews.render.ffmpeg import encode_mp4
-from sinews.render.frames import paint_frames
+from sinews.render.frames import iter_frames
 from sinews.render.painter import FramePainter, fit_positions, frame_index, node_radii
-from sinews.render.raster import RasterCanvas
+from sinews.render.painting import Layered
 from sinews.render.style import Overlay, Style
-from sinews.render.svg import SvgCanvas
-from sinews.render.view import Box, View, world_bounds
+from sinews.render.view import Box, Size, View, pixels, world_bounds
+from sinews.render.writer import GIF_MAX_FPS, write
 from sinews.trajectory import Trajectory
 
 __all__ = [
@@ -35,17 +34,7 @@ __all__ = [
     "save_svg",
 ]
 
-Size = int | tuple[int, int]
 PathLike = str | os.PathLike[str]
-GIF_MAX_FPS = 30.0
-"""GIFs play at most this fast (browsers slow down faster ones)."""
-
-
-def _pixels(size: Size, *, even: bool = False) -> tuple[int, int]:
-    width, height = (size, size) if isinstance(size, int) else size
-    if even:
-        width, height = width + width % 2, height + height % 2
-    return int(width), int(height)
 
 
 def make_painter(
@@ -71,37 +60,19 @@ def make_painter(
             instead of fitting the motion.
     """
     style = style or Style()
-    pixels = _pixels(size)
     if box is None:
         bounds = world_bounds(fit_positions(traj), node_radii(traj, style))
-        view = View.fit(bounds, pixels, margin=style.margin)
+        view = View.fit(bounds, pixels(size), margin=style.margin)
     else:
-        view = View.fit(box, pixels, margin=0.0)
+        view = View.fit(box, pixels(size), margin=0.0)
     chosen = Overlay() if overlay is True else (overlay or None)
     return FramePainter(traj, view, style=style, overlay=chosen, caption=caption)
 
 
-def _frame_step(traj: Trajectory, fps: float | None, cap: float = math.inf) -> int:
-    """Every how many trajectory frames to keep for at most ``fps`` (and ``cap``) frames/s."""
-    wanted = min(traj.fps if fps is None else fps, cap)
-    if not wanted > 0:
-        raise RenderError(f"fps must be positive, got {fps}")
-    return max(1, math.ceil(traj.fps / wanted - 1e-9))
-
-
-def iter_frames(painter: FramePainter, *, step: int = 1) -> Iterator[npt.NDArray[np.uint8]]:
-    """Every ``step``-th frame of the painter's trajectory as (H, W, 3) uint8 pictures.
-
-    One canvas is reused, so frames cost only drawing and downsampling.
-    """
-    size = (painter.view.width, painter.view.height)
-    return paint_frames(painter.draw, size, painter.traj.n_frames, step=step)
-
-
-def _frames(traj: Trajectory, frame: int | Sequence[int] | None) -> list[int]:
+def _layers(traj: Trajectory, frame: int | Sequence[int] | None) -> tuple[int, ...]:
     if frame is None or isinstance(frame, int):
-        return [frame_index(traj, frame)]
-    return [frame_index(traj, f) for f in frame]
+        return (frame_index(traj, frame),)
+    return tuple(frame_index(traj, f) for f in frame)
 
 
 def save_png(
@@ -125,11 +96,7 @@ def save_png(
         size, overlay, caption, style, box: as for `make_painter`.
     """
     painter = make_painter(traj, size, overlay=overlay, caption=caption, style=style, box=box)
-    canvas = RasterCanvas(painter.view.width, painter.view.height)
-    painter.draw(canvas, _frames(traj, frame))
-    with atomic_output(path) as tmp:
-        canvas.image().save(tmp, format="PNG", optimize=False)
-    return Path(path)
+    return write(Layered(painter, _layers(traj, frame)), path, kind=".png")
 
 
 def save_svg(
@@ -145,11 +112,7 @@ def save_svg(
 ) -> Path:
     """Write one frame (or an onion skin of several) as a standalone SVG; see `save_png`."""
     painter = make_painter(traj, size, overlay=overlay, caption=caption, style=style, box=box)
-    canvas = SvgCanvas(painter.view.width, painter.view.height)
-    painter.draw(canvas, _frames(traj, frame))
-    with atomic_output(path) as tmp:
-        tmp.write_text(canvas.to_string(), encoding="utf-8")
-    return Path(path)
+    return write(Layered(painter, _layers(traj, frame)), path, kind=".svg")
 
 
 def save_gif(
@@ -175,26 +138,8 @@ def save_gif(
         fps: highest frame rate wanted.
         size, overlay, caption, style, box: as for `make_painter`.
     """
-    step = _frame_step(traj, fps, GIF_MAX_FPS)
     painter = make_painter(traj, size, overlay=overlay, caption=caption, style=style, box=box)
-    with atomic_output(path) as tmp:
-        images = [
-            Image.fromarray(rgb).quantize(colors=255, method=Image.Quantize.FASTOCTREE)
-            for rgb in iter_frames(painter, step=step)
-        ]
-        if not images:
-            raise RenderError("the trajectory has no frames")
-        # Centisecond ticks (GIF's unit) that keep the total duration in real time.
-        ticks = np.round(np.arange(len(images) + 1) * step / traj.fps * 100.0)
-        images[0].save(
-            tmp,
-            format="GIF",
-            save_all=True,
-            append_images=images[1:],
-            duration=[int(10 * max(d, 1)) for d in np.diff(ticks)],
-            loop=0,
-        )
-    return Path(path)
+    return write(painter, path, kind=".gif", fps=fps)
 
 
 def save_mp4(
@@ -229,23 +174,9 @@ def save_mp4(
     Raises:
         RenderError: unwritable path, missing audio or an ffmpeg failure.
     """
-    if audio is not None and not Path(audio).is_file():
-        raise RenderError(f"audio file not found: {audio}")
-    if traj.n_frames == 0:
-        raise RenderError("the trajectory has no frames")
-    step = _frame_step(traj, fps)
-    pixels = _pixels(size, even=True)
-    painter = make_painter(traj, pixels, overlay=overlay, caption=caption, style=style, box=box)
-    with atomic_output(path) as tmp:
-        encode_mp4(
-            iter_frames(painter, step=step),
-            tmp,
-            size=pixels,
-            fps=traj.fps / step,
-            audio=None if audio is None else Path(audio),
-            audio_offset=audio_offset,
-        )
-    return Path(path)
+    even = pixels(size, even=True)
+    painter = make_painter(traj, even, overlay=overlay, caption=caption, style=style, box=box)
+    return write(painter, path, kind=".mp4", fps=fps, audio=audio, audio_offset=audio_offset)
 
 
 _WRITERS: dict[str, Callable[..., Path]] = {

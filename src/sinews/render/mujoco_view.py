@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import numpy.typing as npt
 
-from sinews.figures._mujoco import require_mujoco
+from sinews.figures import require_mujoco
 from sinews.render._output import atomic_output, suffix_of
 from sinews.render.errors import RenderError
 
@@ -384,7 +384,7 @@ def save_mp4_3d(
     Shadows cost most of a software-rendered frame (640×360, 2 busy cores: the
     humanoid 211 ms with, 60 ms without; the lamp 88 and 44).
     """
-    from sinews.render.ffmpeg import encode_mp4
+    from sinews.render.mp4 import encode_mp4
 
     suffix_of(path, (".mp4",))
     if size[0] % 2 or size[1] % 2:
@@ -444,7 +444,7 @@ def render_recordings_3d(
         if len(frames) != 1:
             raise RenderError("a .png strobe shows one individual; use .mp4 for several")
         return save_strobe_3d(model, frames[0], path, size=size, shadows=shadows is not False)
-    from sinews.render.ffmpeg import encode_mp4
+    from sinews.render.mp4 import encode_mp4
 
     camera = default_camera(model, frames[0][0])
 

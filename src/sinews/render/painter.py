@@ -11,7 +11,7 @@ import numpy.typing as npt
 
 from sinews.render.canvas import Canvas, Color, Point
 from sinews.render.errors import RenderError
-from sinews.render.style import Overlay, Style, default_colors
+from sinews.render.style import Overlay, Style, as_colors, default_colors
 from sinews.render.view import View, world_bounds
 from sinews.trajectory import Trajectory
 
@@ -106,13 +106,8 @@ def has_floor(traj: Trajectory, style: Style) -> bool:
     return box[1] >= -(0.02 + 0.05 * (box[3] - box[1]))
 
 
-def _as_colors(rgb: npt.NDArray[np.floating] | npt.NDArray[np.uint8]) -> list[Color]:
-    clipped = np.clip(np.round(rgb), 0, 255).astype(int).reshape(-1, 3)
-    return [(int(r), int(g), int(b)) for r, g, b in clipped]
-
-
 class FramePainter:
-    """Draws frames of one trajectory; sizes and scales are worked out once.
+    """Draws frames of one spring-mass trajectory (a `LayeringPainter`); sizes are worked out once.
 
     Nodes are discs of their radius (at least ``style.min_radius_px``) in
     their colour with a darker rim (or hearts, or spikes pointing away from
@@ -151,7 +146,7 @@ class FramePainter:
         ).astype(np.float64)
         edge_fill = 0.5 * (fill[traj.edges[:, 0]] + fill[traj.edges[:, 1]]) * 0.62
         self._rgb = {"node": fill, "rim": fill * 0.55, "edge": edge_fill}
-        self._colors = {key: _as_colors(rgb) for key, rgb in self._rgb.items()}
+        self._colors = {key: as_colors(rgb) for key, rgb in self._rgb.items()}
         radii = node_radii(traj, self.style)
         self._radius_px = np.maximum(radii * view.scale, self.style.min_radius_px).tolist()
         shapes = traj.node_shapes or ()
@@ -164,6 +159,21 @@ class FramePainter:
         self._responders = self._check_responders()
         if caption is not None:
             self._caption_text(0)
+
+    @property
+    def size(self) -> tuple[int, int]:
+        """(width, height) of the view, pixels."""
+        return (self.view.width, self.view.height)
+
+    @property
+    def n_frames(self) -> int:
+        """Frames of the trajectory."""
+        return self.traj.n_frames
+
+    @property
+    def fps(self) -> float:
+        """The trajectory's frame rate."""
+        return self.traj.fps
 
     def _decide_force_scale(self) -> float | None:
         if self.overlay is None or not self.overlay.forces or self.traj.forces is None:
@@ -262,7 +272,7 @@ class FramePainter:
         if fade == 0.0:
             return self._colors[key]
         background = np.asarray(self.style.background, dtype=np.float64)
-        return _as_colors(self._rgb[key] * (1.0 - fade) + background * fade)
+        return as_colors(self._rgb[key] * (1.0 - fade) + background * fade)
 
     def _draw_body(self, canvas: Canvas, frame: int, fade: float) -> None:
         points, visible = self._points(frame)

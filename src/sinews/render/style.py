@@ -11,7 +11,7 @@ import numpy.typing as npt
 
 from sinews.render.canvas import Color
 
-__all__ = ["Overlay", "Style", "default_colors"]
+__all__ = ["Overlay", "Style", "as_colors", "default_colors"]
 
 
 @dataclass(frozen=True)
@@ -83,3 +83,9 @@ def default_colors(n_nodes: int) -> npt.NDArray[np.uint8]:
     hues = (np.arange(n_nodes) * 0.618033988749895 + 0.05) % 1.0
     rgb = [colorsys.hsv_to_rgb(h, 0.65, 0.92) for h in hues]
     return np.round(np.array(rgb, dtype=np.float64).reshape(-1, 3) * 255).astype(np.uint8)
+
+
+def as_colors(rgb: npt.NDArray[np.floating] | npt.NDArray[np.uint8]) -> list[Color]:
+    """(..., 3) channel values as colours (rounded, clipped to 0–255), in row order."""
+    clipped = np.clip(np.round(rgb), 0, 255).astype(int).reshape(-1, 3)
+    return [(int(r), int(g), int(b)) for r, g, b in clipped]

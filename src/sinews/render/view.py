@@ -11,13 +11,24 @@ import numpy.typing as npt
 from sinews.limits import MAX_PICTURE_PIXELS
 from sinews.render.errors import RenderError
 
-__all__ = ["DEFAULT_BOX", "Box", "View", "world_bounds"]
+__all__ = ["DEFAULT_BOX", "Box", "Size", "View", "pixels", "world_bounds"]
 
 Box = tuple[float, float, float, float]
 """A world rectangle (x_min, y_min, x_max, y_max) in metres."""
 
 DEFAULT_BOX: Box = (-1.0, 0.0, 1.0, 2.0)
 """What a view shows when there is nothing finite to fit: 2 m × 2 m above the floor."""
+
+Size = int | tuple[int, int]
+"""A picture size in pixels: an int for a square, or (width, height)."""
+
+
+def pixels(size: Size, *, even: bool = False) -> tuple[int, int]:
+    """(width, height) of ``size``; with ``even``, each rounded up to even (H.264 needs it)."""
+    width, height = (size, size) if isinstance(size, int) else size
+    if even:
+        width, height = width + width % 2, height + height % 2
+    return int(width), int(height)
 
 
 def world_bounds(positions: npt.ArrayLike, radii: npt.ArrayLike | None = None) -> Box | None:

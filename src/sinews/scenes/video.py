@@ -10,23 +10,11 @@ from __future__ import annotations
 
 import dataclasses
 import os
-from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
-import numpy.typing as npt
 
-from sinews.render import (
-    Canvas,
-    FramePainter,
-    Overlay,
-    Style,
-    View,
-    atomic_output,
-    paint_frames,
-    render,
-)
-from sinews.render.ffmpeg import encode_mp4
+from sinews.render import Canvas, FramePainter, Overlay, Style, View, render, write
 from sinews.scenes.messages import SceneRun
 from sinews.trajectory import Trajectory
 
@@ -82,21 +70,35 @@ def save_scene(
     if path.suffix.lower() != ".mp4":
         return render(traj, path, size=size, box=box, style=style, overlay=chosen is not None)
     painter = FramePainter(traj, View.fit(box, size, margin=0.0), style=style, overlay=chosen)
-    step = max(1, round(traj.fps / fps))
-    with atomic_output(path) as tmp:
-        encode_mp4(_frames(painter, run, step), tmp, size=size, fps=traj.fps / step)
-    return path
+    return write(ScorePainter(painter, run), path, kind=".mp4", fps=fps)
 
 
-def _frames(painter: FramePainter, run: SceneRun, step: int) -> Iterator[npt.NDArray[np.uint8]]:
-    """Every ``step``-th frame, drawn with the score in the top-left corner."""
-    style = painter.style
-    pad, text_size = 0.03 * painter.view.height, 0.05 * painter.view.height
+@dataclasses.dataclass(frozen=True)
+class ScorePainter:
+    """A scene's frames with its score in the top-left corner (a `sinews.render.Painter`)."""
 
-    def draw(canvas: Canvas, frame: int) -> None:
-        painter.draw(canvas, frame)
-        text = f"{run.score_name}: {run.score[frame]}"
-        canvas.text((pad, pad), text, style.text_color, size=text_size, halo=style.background)
+    painter: FramePainter
+    run: SceneRun
 
-    size = (painter.view.width, painter.view.height)
-    return paint_frames(draw, size, painter.traj.n_frames, step=step)
+    @property
+    def size(self) -> tuple[int, int]:
+        """The painter's size."""
+        return self.painter.size
+
+    @property
+    def n_frames(self) -> int:
+        """The run's frames."""
+        return self.painter.n_frames
+
+    @property
+    def fps(self) -> float:
+        """The run's frame rate."""
+        return self.painter.fps
+
+    def draw(self, canvas: Canvas, frame: int) -> None:
+        """The scene at ``frame`` and, over it, the score then."""
+        self.painter.draw(canvas, frame)
+        style, height = self.painter.style, self.painter.view.height
+        text = f"{self.run.score_name}: {self.run.score[frame]}"
+        canvas.text((0.03 * height, 0.03 * height), text, style.text_color,
+                    size=0.05 * height, halo=style.background)  # fmt: skip

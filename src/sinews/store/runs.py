@@ -145,6 +145,72 @@ class RunStore:
         assert cursor.lastrowid is not None
         return cursor.lastrowid
 
+    def branch(
+        self,
+        run_id: int,
+        generation: int,
+        *,
+        config: dict[str, Any],
+        song_hash: str | None = None,
+        song_path: str | None = None,
+    ) -> int:
+        """A new run holding copies of generations 0..``generation`` of ``run_id``, made in
+        one transaction (a crash leaves either no branch or the whole of it).
+
+        The copies keep their genomes, seeds, fitness, terms, lineage (parents are the
+        copies) and strategy checkpoints, and the picks that bred the copied
+        generations; the picks made in ``generation`` itself are the branch's to make.
+
+        Args:
+            run_id: the run to branch from.
+            generation: the last generation to copy.
+            config: the branch's settings (the caller adds e.g. ``branch_of``).
+            song_hash: the branch's song hash (default: the run's).
+            song_path: the branch's song file (default: the run's).
+
+        Returns:
+            The branch's id (status ``running``).
+        """
+        info = self.run(run_id)
+        if not 0 <= generation < info.generations:
+            raise StoreError(f"run {run_id} has no generation {generation}")
+        now = _now()
+        with self._transaction() as conn:
+            cursor = conn.execute(
+                "INSERT INTO runs (kind, config, seed, song_hash, song_path, code_version, "
+                "genome_codec, status, created, updated) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                (info.kind, json.dumps(config), info.seed, song_hash or info.song_hash,
+                 song_path or info.song_path, code_version(), info.genome_codec, "running",
+                 now, now),
+            )  # fmt: skip
+            new_id = cursor.lastrowid
+            conn.execute(
+                "INSERT INTO individuals (run_id, generation, idx, genome, seed, fitness, terms, "
+                "picked, failed) SELECT ?, generation, idx, genome, seed, fitness, terms, "
+                "CASE WHEN generation < ? THEN picked ELSE 0 END, failed FROM individuals "
+                "WHERE run_id = ? AND generation <= ? ORDER BY generation, idx",
+                (new_id, generation, run_id, generation),
+            )
+            conn.execute(
+                "INSERT INTO parents (child, slot, parent) "
+                "SELECT nc.id, p.slot, np.id FROM parents p "
+                "JOIN individuals oc ON oc.id = p.child JOIN individuals op ON op.id = p.parent "
+                "JOIN individuals nc ON nc.run_id = ? AND nc.generation = oc.generation "
+                "AND nc.idx = oc.idx "
+                "JOIN individuals np ON np.run_id = ? AND np.generation = op.generation "
+                "AND np.idx = op.idx "
+                "WHERE oc.run_id = ? AND oc.generation <= ?",
+                (new_id, new_id, run_id, generation),
+            )
+            conn.execute(
+                "INSERT INTO generations (run_id, generation, checkpoint, created) "
+                "SELECT ?, generation, checkpoint, ? FROM generations "
+                "WHERE run_id = ? AND generation <= ? ORDER BY generation",
+                (new_id, now, run_id, generation),
+            )
+        assert new_id is not None
+        return new_id
+
     def run(self, run_id: int) -> RunInfo:
         """The run ``run_id``; `StoreError` if there is none."""
         rows = self._query(f"SELECT {_RUN_COLUMNS} FROM runs WHERE id = ?", (run_id,))

@@ -8,9 +8,9 @@ critically damped spring on the grabbed node, `GRAB_HZ` for `GRAB_MASSES`
 times the node's mass (more would be unstable at the engine's 60 Hz
 explicit step), and never stronger than `MAX_PULL_G` times the body's weight.
 
-The live simulation uses exactly the inputs of `sinews.experiments.dancers.dance`
-(the same body, wiggle seed, delayed music drive and beat phase), so until a
-node is grabbed it moves bit for bit like the recorded dance, and it follows
+The live simulation starts from exactly what `sinews.experiments.dancers.simulate.dance`
+starts from (`prepare_dance`: the same body, wiggle seed, delayed music drive and
+beat phase), so until a node is grabbed it moves bit for bit like the recorded dance, and it follows
 the page's audio clock: asked for frame k, it steps from where it is to k
 (or starts again from frame 0 when the clock went back).
 """
@@ -23,9 +23,9 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from sinews.dancers import DANCER_ENGINE, develop
-from sinews.dancers.responders import delayed
-from sinews.springmass import BodyBatch, Recording, SimState, simulate
+from sinews.dancers import DANCER_ENGINE
+from sinews.experiments.dancers.simulate import prepare_dance
+from sinews.springmass import Recording, SimState, simulate
 from sinews.studio.motion import StageDancer
 
 __all__ = ["GRAB_HZ", "GRAB_MASSES", "MAX_PULLED_STEPS", "MAX_PULL_G", "Grab", "LiveDancer"]
@@ -61,12 +61,16 @@ class LiveDancer:
     """
 
     def __init__(self, dancer: StageDancer) -> None:
-        body = develop(dancer.genome, n_bands=dancer.music.n_bands)
-        self.batch = BodyBatch.from_bodies([body], seeds=[int(dancer.individual.seed or 0)])
+        setup = prepare_dance(
+            [dancer.genome], dancer.seconds, music=dancer.music,
+            seeds=[int(dancer.individual.seed or 0)],
+        )  # fmt: skip
+        body = setup.batch.bodies[0]
+        self.batch = setup.batch
         self.n_nodes = body.n_nodes
-        self.frames = max(1, round(dancer.seconds / DANCER_ENGINE.dt)) + 1
-        self._drive = delayed(dancer.music.activation)
-        self._phase = delayed(dancer.music.beat_phase)
+        self.frames = setup.n_steps + 1
+        self._drive = setup.drive
+        self._phase = setup.phase
         self._mass = body.mass
         self._max_pull = MAX_PULL_G * float(body.mass.sum()) * DANCER_ENGINE.gravity
         self.state = self.batch.initial_state()

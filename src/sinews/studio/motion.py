@@ -1,7 +1,7 @@
 """What the page plays: generations and single dancers, danced and packed as binary arrays.
 
-A generation is danced in one batched rollout (`sinews.experiments.dancers.dance`)
-with each dancer's stored wiggle seed, so it moves exactly as it would
+A generation is replayed by the dancer run kind (`RunKind.replay`: one batched
+rollout with each dancer's stored wiggle seed), so it moves exactly as it would
 anywhere else, and sent as int16 millimetres. The dancer on the stage is
 danced alone with its forces recorded (the debug overlay), possibly with
 some main body genes changed by the sliders, and sent as float32. Recent
@@ -19,8 +19,9 @@ from typing import Any, TypeVar
 import numpy as np
 
 from sinews.dancers import DancerGenome, develop
-from sinews.evolve import Strategy
-from sinews.experiments.dancers import dance
+from sinews.evolve import Strategy, restore_strategy
+from sinews.experiments.dancers.run import KIND
+from sinews.experiments.dancers.simulate import dance
 from sinews.music import MusicFeatures
 from sinews.store import Individual
 from sinews.studio.pack import MILLIMETRES, encode_pack, millimetres
@@ -105,30 +106,24 @@ class Motion:
         self, run_id: int, generation: int
     ) -> tuple[list[Individual], list[Trajectory]]:
         """A stored generation and its dances (one batched rollout)."""
-        run = self.runs.get(run_id)
+        self.runs.get(run_id)  # refuses a run the studio cannot open
         people = self.runs.store.individuals(run_id, generation)
         if not people:
             raise StudioError(f"run {run_id} has no generation {generation}")
-        music, _ = self.runs.music(run_id)
-        trajs = dance(
-            [DancerGenome(p.genome) for p in people],
-            run.seconds,
-            music=music,
-            seeds=[int(p.seed or 0) for p in people],
-        )
-        return people, trajs
+        return people, [r.trajectory for r in KIND.replay(self.runs.store, people)]
 
     def _generation(self, run_id: int, generation: int) -> bytes:
         people, trajs = self.dance_generation(run_id, generation)
         positions = np.stack([t.positions for t in trajs])
-        checkpoint = Strategy.from_bytes(self.runs.store.checkpoint(run_id, generation))
+        strategy = restore_strategy(self.runs.store.checkpoint(run_id, generation))
+        assert isinstance(strategy, Strategy)  # dancers breed with float strategies
         header = {
             "run": run_id,
             "generation": generation,
             "fps": trajs[0].fps,
             "frames": trajs[0].n_frames,
             "scale": MILLIMETRES,
-            "mutation": checkpoint.variation.mutation_sigma,
+            "mutation": strategy.variation.mutation_sigma,
             "names": list(trajs[0].node_names),
             "dancers": [_dancer_header(p, t) for p, t in zip(people, trajs, strict=True)],
         }

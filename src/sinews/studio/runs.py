@@ -1,21 +1,19 @@
-"""The studio's runs: interactive dancer runs in the run store — start, breed, branch, re-tempo.
+"""The studio's runs: dancer runs bred by picks — start, open, breed, branch, re-tempo.
 
-Every generation and every pick is written to the `RunStore` the moment it
-is made (one transaction per generation), so the server can be killed at any
-time and ``sinews studio --resume RUN`` carries on.
-
-Breeding uses the evolution loop of `sinews.experiments.evolution`: the
-strategy is restored from the last generation's checkpoint, told the picks
-and asked for the next generation (`record_picks` does the same, but it
-cannot change the mutation strength, and `pick_dancers` also scores every
-dancer, which an interactive run never reads). Studio generations are not
-scored; the page simulates them once, to show them.
+Everything goes through the dancer run kind (`sinews.experiments.dancers.run`,
+the same `RunKind` the CLI uses): the studio starts runs bred by hand
+(strategy ``interactive``, not scored; the page simulates a generation once,
+to show it), and opens any dancer run whose strategy takes picks, so a run
+made by ``sinews evolve dancers --strategy hybrid`` can be continued by hand
+(its children are then scored as well). Every generation and pick is
+written to the `RunStore` the moment it is made, so the server can be killed
+at any time and ``sinews studio --resume RUN`` carries on.
 
 A run's history is never rewritten. Breeding from an earlier generation, or
 dancing on to another song, *branches*: a new run gets copies of the
-generations up to that point (genomes, lineage, picks and strategy
-checkpoints), so both histories stay and the branch's lineage reaches back to
-generation 0 through the copies.
+generations up to that point in one transaction (`RunStore.branch`), so both
+histories stay and the branch's lineage reaches back to generation 0
+through the copies.
 """
 
 from __future__ import annotations
@@ -25,22 +23,12 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-import numpy as np
-import numpy.typing as npt
-
-from sinews.dancers import DancerGenome
 from sinews.errors import SinewsError
-from sinews.experiments.dancer_evolution import (
-    KIND,
-    create_dancer_run,
-    dancer_config,
-    run_music,
-)
-from sinews.experiments.evolution import FloatStrategies, advance, new_strategy, record_picks
+from sinews.evolve import SerialEvaluator
+from sinews.experiments.dancers import run as dancers
 from sinews.experiments.run_config import EvolutionConfig
 from sinews.music import MusicFeatures, analyse_file
-from sinews.music.analysis import MAX_BPM, MIN_BPM
-from sinews.store import GenerationRecord, Individual, RunInfo, RunStore
+from sinews.store import RunInfo, RunStore
 from sinews.studio.songs import Song, SongLibrary
 
 __all__ = [
@@ -53,12 +41,16 @@ __all__ = [
 ]
 
 STRATEGY = "interactive"
+PICKING = ("interactive", "hybrid")
+"""Strategies that take a person's picks: the runs the studio can open."""
 OPEN_ENDED = 100_000
 """The generation count a studio run is given: it ends when the person stops."""
 MAX_SECONDS = 120.0
 """Longest dance the studio simulates; a longer song loops over its first two minutes."""
 POPULATIONS = range(12, 21)
-"""Dancers per generation the studio offers."""
+"""Dancers per generation the studio offers for new runs."""
+MAX_SHOWN = 25
+"""Most dancers per generation the page shows (a run with more cannot be opened)."""
 MAX_MUTATION = 0.5
 """Largest mutation strength (the Gaussian sigma on genes in [0, 1])."""
 
@@ -112,18 +104,17 @@ class StudioRuns:
     def create(self, song: Song, *, seed: int | None = None) -> int:
         """Start a run on ``song`` with a random first generation; return its id."""
         seed = secrets.randbelow(2**31) if seed is None else seed
-        config, _, _ = dancer_config(
-            file_values={},
+        run_id = dancers.KIND.create_run(
+            self.store, subject=dancers.NAME, file_values={},
             options={"song": song.setting, "population": self.population, "seed": seed,
-                     "generations": OPEN_ENDED, "strategy": STRATEGY},
+                     "generations": OPEN_ENDED, "strategy": STRATEGY,
+                     "seconds": _seconds(song)},
         )  # fmt: skip
-        run_id = self._create(config, song)
-        strategy = new_strategy(config.to_dict(), genome_size=DancerGenome.SIZE, seed=seed)
-        advance(self.store, run_id, scorer=None, spec=None, strategy=strategy)
+        dancers.KIND.run(self.store, run_id, evaluator=SerialEvaluator())
         return run_id
 
     def get(self, run_id: int) -> StudioRun:
-        """A studio run; `StudioError` if the run is not an interactive dancer run."""
+        """A run the studio can breed; `StudioError` otherwise (see `info`)."""
         info = self.info(run_id)
         origin = info.config.get("branch_of")
         return StudioRun(
@@ -137,26 +128,37 @@ class StudioRuns:
         )
 
     def all(self) -> list[StudioRun]:
-        """Every interactive dancer run in the store, newest first."""
-        return [self.get(info.id) for info in reversed(self.store.runs()) if _is_studio(info)]
+        """Every run the studio can breed, newest first."""
+        found = []
+        for info in reversed(self.store.runs()):
+            if _picks(info):
+                try:
+                    found.append(self.get(info.id))
+                except SinewsError:  # no generation yet, too many dancers, song gone
+                    continue
+        return found
 
     def latest(self) -> int | None:
-        """The newest studio run that can still be opened (its song is there), if any."""
-        for info in reversed(self.store.runs()):
-            if _is_studio(info) and info.generations:
-                try:
-                    return self.get(info.id).id
-                except SinewsError:
-                    continue
-        return None
+        """The newest run the studio can open (its song is there), if any."""
+        runs = self.all()
+        return runs[0].id if runs else None
 
     def info(self, run_id: int) -> RunInfo:
-        """The stored run, checked to be one the studio can breed."""
+        """The stored run, checked to be one the studio can breed: a dancer run whose
+        strategy takes picks, with a generation and at most `MAX_SHOWN` dancers in it."""
         info = self.store.run(run_id)
-        if not _is_studio(info):
-            raise StudioError(f"run {run_id} is not an interactive dancer run")
+        if info.kind != dancers.NAME:
+            raise StudioError(f"run {run_id} evolves {info.kind}; the studio breeds dancers")
+        if not _picks(info):
+            strategy = EvolutionConfig.from_dict(info.config).strategy
+            raise StudioError(
+                f"run {run_id}'s strategy ({strategy}) takes no picks; the studio opens "
+                "interactive and hybrid runs (sinews evolve dancers --strategy hybrid)"
+            )
         if info.generations == 0:
             raise StudioError(f"run {run_id} has no generation yet")
+        if int(info.config["population"]) > MAX_SHOWN:
+            raise StudioError(f"run {run_id} has more dancers than the page shows ({MAX_SHOWN})")
         return info
 
     def music(self, run_id: int) -> tuple[MusicFeatures, Path]:
@@ -165,11 +167,9 @@ class StudioRuns:
         Checked against the run's song hash on first use, then kept.
         """
         info = self.info(run_id)
-        bpm = _bpm(info)
-        key = (run_id, bpm)
+        key = (run_id, _bpm(info))
         if key not in self._music:
-            music, path = run_music(info)
-            self._music[key] = (music if bpm is None else analyse_file(path, bpm=bpm)), path
+            self._music[key] = dancers.run_music(info)
         return self._music[key]
 
     def breed(
@@ -197,8 +197,7 @@ class StudioRuns:
             raise StudioError(f"mutation must be in [0, {MAX_MUTATION}], got {mutation}")
         if generation < run.last:
             run_id = self.branch(run_id, generation)
-        strategies = FloatStrategies(DancerGenome.SIZE, mutation=mutation)
-        summary = record_picks(self.store, run_id, generation, chosen, strategies=strategies)
+        summary = dancers.KIND.pick(self.store, run_id, generation, chosen, mutation=mutation)
         return run_id, summary.generation
 
     def branch(self, run_id: int, generation: int, *, song: Song | None = None) -> int:
@@ -215,68 +214,34 @@ class StudioRuns:
         run = self.get(run_id)
         if not 0 <= generation <= run.last:
             raise StudioError(f"run {run_id} has no generation {generation}")
-        info = self.store.run(run_id)
-        new_id = self._create(EvolutionConfig.from_dict(info.config), song or run.song)
-        extra = {"branch_of": [run_id, generation], "bpm": run.bpm if song is None else None}
-        self.store.update_config(new_id, {**self.store.run(new_id).config, **extra})
-        previous: list[Individual] = []
-        for g in range(generation + 1):
-            people = self.store.individuals(run_id, g)
-            record = _copy(people, previous, g, self.store.checkpoint(run_id, g))
-            picks = [p.index for p in previous if p.picked]
-            self.store.add_generation(new_id, record, picks=picks)
-            previous = people
-        return new_id
+        if song is None:
+            return dancers.branch(self.store, run_id, generation)
+        return dancers.branch(
+            self.store, run_id, generation, song=song.setting, seconds=_seconds(song)
+        )
 
     def set_bpm(self, run_id: int, bpm: float | None) -> None:
         """Correct (or, with None, un-correct) the tempo a run's song is analysed with."""
-        if bpm is not None and not MIN_BPM <= bpm <= MAX_BPM:
-            raise StudioError(f"bpm must be in [{MIN_BPM:g}, {MAX_BPM:g}], got {bpm:g}")
-        info = self.info(run_id)
-        self.store.update_config(run_id, {**info.config, "bpm": bpm})
-
-    def _create(self, config: EvolutionConfig, song: Song) -> int:
-        seconds = min(MAX_SECONDS, analyse_file(song.path).duration)
-        return create_dancer_run(self.store, config, song=song.setting, seconds=seconds)
+        self.info(run_id)
+        try:
+            dancers.set_tempo(self.store, run_id, bpm)
+        except SinewsError as exc:
+            raise StudioError(str(exc)) from None
 
 
-def _is_studio(info: RunInfo) -> bool:
+def _seconds(song: Song) -> float:
+    """How long the studio dances to ``song``: all of it, up to `MAX_SECONDS`."""
+    return min(MAX_SECONDS, analyse_file(song.path).duration)
+
+
+def _picks(info: RunInfo) -> bool:
+    """Whether a stored run is a dancer run bred (at least in part) by picks."""
     strategy = info.config.get("strategy")
-    return info.kind == KIND and isinstance(strategy, dict) and strategy.get("name") == STRATEGY
+    return (
+        info.kind == dancers.NAME and isinstance(strategy, dict) and strategy.get("name") in PICKING
+    )
 
 
 def _bpm(info: RunInfo) -> float | None:
     value = info.config.get("bpm")
     return None if value is None else float(value)
-
-
-def _copy(
-    people: list[Individual], previous: list[Individual], generation: int, checkpoint: bytes
-) -> GenerationRecord:
-    """A stored generation as a record for another run (parents as indices, not ids)."""
-    index_of = {p.id: p.index for p in previous}
-    parents = np.full((len(people), 2), -1, dtype=np.int64)
-    for k, person in enumerate(people):
-        parents[k, : len(person.parents)] = [index_of[p] for p in person.parents]
-    scored = all(p.fitness is not None for p in people)
-    terms, names = _terms(people)
-    return GenerationRecord(
-        generation=generation,
-        genomes=np.stack([np.asarray(p.genome, dtype=np.float64) for p in people]),
-        parents=parents,
-        checkpoint=checkpoint,
-        seeds=np.array([p.seed or 0 for p in people], dtype=np.int64),
-        fitness=np.array([p.fitness for p in people], dtype=np.float64) if scored else None,
-        terms=terms,
-        term_names=names,
-        failed=np.array([p.failed for p in people], dtype=bool),
-    )
-
-
-def _terms(people: list[Individual]) -> tuple[npt.NDArray[np.float64] | None, list[str]]:
-    """(P, K) stored fitness terms (NaN where one was not a number) and their names."""
-    if not all(p.terms for p in people):
-        return None, []
-    names = list(people[0].terms or {})
-    rows = [[(p.terms or {}).get(name) for name in names] for p in people]
-    return np.array([[np.nan if v is None else v for v in row] for row in rows]), names

@@ -5,7 +5,7 @@ checked by decoding it (`sinews.music.analyse_file` reads it with
 `sinews.music.load_audio`, which refuses anything that is not audio), then
 stored in the library folder as ``u<16 hex digits of its SHA-256>`` plus a
 known extension, beside a small JSON file with the name to show. A run
-stores its song the way `sinews.experiments.dancer_evolution` expects
+stores its song the way `sinews.experiments.dancers.run` expects
 (``demo:<name>`` or the file's absolute path).
 """
 
@@ -20,7 +20,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from sinews.errors import SinewsError
-from sinews.experiments.dancer_evolution import song_path
+from sinews.experiments.dancers.settings import song_path
 from sinews.music import DEFAULT_DEMO, DEMO_NAMES, AudioError, MusicFeatures, analyse_file
 from sinews.store import RunInfo
 

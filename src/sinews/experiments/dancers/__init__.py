@@ -1,0 +1,1 @@
+"""Dancers evolved to a song (seed 000): settings, simulate, score, run."""

@@ -1,0 +1,93 @@
+"""What the figure kinds share: the built-in figures, their fitness, hand-pick files.
+
+A figure run's stored kind is ``"<controller>-<figure>"`` (e.g.
+``"springnet-snake"``); each controller is a run kind of
+`sinews.experiments.kinds`.
+
+Spring-net runs (seed 001) are rated by the distance travelled,
+``|x_final - x_initial|`` of the figure's root, in metres; GP runs (seed 003)
+by a task's goal and style terms.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+import numpy.typing as npt
+
+from sinews.errors import SinewsError
+from sinews.figures import Figure, RolloutResult, humanoid, luxo, snake
+from sinews.figures.humanoid3d import humanoid3d
+from sinews.figures.luxo3d import luxo3d
+
+__all__ = ["FIGURES", "distance_travelled", "make_figure", "parse_keep", "read_keep_file"]
+
+FIGURES: dict[str, Callable[[], Figure]] = {
+    "snake": snake,
+    "luxo": luxo,
+    "humanoid": humanoid,
+    "luxo3d": luxo3d,
+    "humanoid3d": humanoid3d,
+}
+"""The built-in figures by name (``luxo3d`` and ``humanoid3d`` are 3D: a free root)."""
+
+
+def make_figure(name: str) -> Figure:
+    """The built-in figure called ``name``; `SinewsError` naming the choices otherwise."""
+    if name not in FIGURES:
+        raise SinewsError(f"no figure called {name!r}; choose from {', '.join(FIGURES)}")
+    return FIGURES[name]()
+
+
+def distance_travelled(result: RolloutResult) -> npt.NDArray[np.float64]:
+    """(P,) the paper's fitness: ``|x_final - x_initial|`` of each figure's root, metres."""
+    return np.abs(result.distance)
+
+
+_KEEP_LINE = re.compile(r"^\s*(\d+)\s*:\s*([\d\s,]*)$")
+
+
+def parse_keep(text: str, *, where: str = "keep file") -> dict[int, list[int]]:
+    """Hand picks per generation from text like ``"0: 12 40\\n3: 7"``.
+
+    One line per generation: its number, a colon, the indices of the
+    individuals that must survive it (spaces or commas between them). Blank
+    lines and ``#`` comments are ignored.
+
+    Returns:
+        generation → indices, in the order given.
+
+    Raises:
+        SinewsError: a malformed line, a generation given twice or a repeated index.
+    """
+    keep: dict[int, list[int]] = {}
+    for number, raw in enumerate(text.splitlines(), start=1):
+        line = raw.split("#", 1)[0].strip()
+        if not line:
+            continue
+        match = _KEEP_LINE.match(line)
+        if match is None:
+            raise SinewsError(f"{where} line {number}: expected 'GENERATION: INDEX INDEX ...'")
+        generation = int(match.group(1))
+        indices = [int(i) for i in re.split(r"[\s,]+", match.group(2).strip()) if i]
+        if generation in keep:
+            raise SinewsError(f"{where} line {number}: generation {generation} given twice")
+        if len(set(indices)) != len(indices):
+            raise SinewsError(f"{where} line {number}: an index is repeated")
+        keep[generation] = indices
+    return keep
+
+
+def read_keep_file(path: str | os.PathLike[str]) -> dict[int, list[int]]:
+    """`parse_keep` of a file; `SinewsError` if it cannot be read."""
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except OSError as exc:
+        raise SinewsError(f"{path}: cannot read ({exc.strerror or exc})") from None
+    except UnicodeDecodeError:
+        raise SinewsError(f"{path}: not a UTF-8 text file") from None
+    return parse_keep(text, where=str(path))

@@ -1,0 +1,64 @@
+"""Scoring a GP run's programs (seed 003) on an evaluator.
+
+Programs are stored as S-expressions (codec ``gp-sexpr/1``); the scorer
+parses them with the run's primitive set (`GPSettings.parse`), so what was
+scored is exactly what was stored. Simulation and rating are
+`sinews.experiments.gp.simulate`' (`measure_programs`); the loop combines the
+terms with the phased-in weights.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+import numpy.typing as npt
+
+from sinews.evolve import Evaluator, SerialEvaluator
+from sinews.experiments.evolution import Scores
+from sinews.experiments.gp.settings import GPSettings, Runtime
+from sinews.experiments.gp.simulate import measure_programs
+from sinews.experiments.score_memory import ChunkContext, ScoreMemory, score_in_chunks
+
+__all__ = [
+    "GPScorer",
+    "score_chunk",
+]
+
+
+def score_chunk(context: ChunkContext[GPSettings], texts: Sequence[str]) -> Scores:
+    """The evaluator's work unit: simulate a chunk of stored programs and measure their terms."""
+    settings = context.settings
+    runtime = Runtime(nthread=context.nthread)
+    done = measure_programs(settings, settings.parse(texts), runtime)
+    return Scores(terms=done.terms, failed=done.failed.copy())
+
+
+@dataclass(eq=False)
+class GPScorer:
+    """Scores populations of stored programs in chunks, remembering the last generation.
+
+    Attributes:
+        settings: the run's settings.
+        evaluator: where the chunks run.
+    """
+
+    settings: GPSettings
+    evaluator: Evaluator
+    _memory: ScoreMemory = field(default_factory=ScoreMemory, repr=False)
+
+    @property
+    def term_names(self) -> tuple[str, ...]:
+        """The task's terms, ``distance`` first."""
+        return tuple(self.settings.task.weights)
+
+    def __call__(self, genomes: Sequence[str], seeds: npt.NDArray[np.int64]) -> Scores:
+        """Score P programs' S-expressions (the seeds are unused: there is no noise)."""
+        nthread = None if isinstance(self.evaluator, SerialEvaluator) else 1
+        context = ChunkContext(self.settings, nthread)
+
+        def simulate(rows: npt.NDArray[np.intp]) -> Scores:
+            return score_in_chunks(self.evaluator, score_chunk, context, [genomes[r] for r in rows])
+
+        return self._memory.score(list(genomes), simulate)

@@ -1,0 +1,1 @@
+"""Spring-net controllers for the figures (seed 001): settings, simulate, score, run."""

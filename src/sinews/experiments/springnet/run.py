@@ -1,0 +1,264 @@
+"""Evolving spring-net controllers for figures with the paper's GA (seed 001).
+
+A run of kind ``"springnet-<figure>"`` stores, beside the common settings
+(`EvolutionConfig`, strategy ``alton`` by default), the figure, the trial
+length, the net's number of masses, the physics and control rates, and the
+hand picks per generation (``keep``), so a resumed run reads the same picks.
+
+How nets are simulated and scored is in `sinews.experiments.springnet.score`;
+this module is the run's life: start, run or resume, hand picks, replay.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from sinews.errors import SinewsError
+from sinews.evolve import Evaluator, GenomeSpace, SerialEvaluator
+from sinews.experiments.evolution import (
+    GenerationSummary,
+    Strategies,
+    continue_run,
+    record_picks,
+)
+from sinews.experiments.figures import FIGURES, make_figure, read_keep_file
+from sinews.experiments.kinds import KindOption, Replay, check_options, check_strategy
+from sinews.experiments.run_config import EvolutionConfig, build_config
+from sinews.experiments.springnet.score import SpringNetScorer
+from sinews.experiments.springnet.settings import TERMS, SpringNetSettings
+from sinews.experiments.springnet.simulate import simulate
+from sinews.render.figure import NetPanel
+from sinews.store import Individual, RunInfo, RunStore
+
+__all__ = ["CONTROLLER", "DEFAULTS", "KIND", "SpringNetKind"]
+
+CONTROLLER = "springnet"
+DEFAULTS: dict[str, Any] = {
+    "population": 2000,
+    "generations": 20,
+    "seed": 0,
+    "fitness": ["distance"],
+    "weights": {},
+    "phase_in": {"start": 0, "full": 0},
+    "strategy": "alton",
+    "figure": None,
+    "seconds": 5.0,
+    "masses": None,
+    "physics_hz": None,
+    "control_hz": 100,
+    "keep": {},
+}
+"""The paper's largest run (20 generations of 2000 nets, 5 s trials) unless told otherwise."""
+_KIND_KEYS = ("figure", "seconds", "masses", "physics_hz", "control_hz", "keep")
+
+
+class SpringNetKind:
+    """Spring-net runs of the figures (see `sinews.experiments.kinds.RunKind`)."""
+
+    name = CONTROLLER
+    subjects = tuple(FIGURES)
+    options = (
+        KindOption("seconds", float, "Length of each trial (spring nets: default 5 s)."),
+        KindOption("masses", int, "Point masses per spring net (default: 4, or one per joint)."),
+        KindOption("keep", Path, "Spring nets' hand picks: a file of lines 'GENERATION: INDEX "
+                   "INDEX ...' naming individuals that survive that generation whatever their "
+                   "rank."),
+    )  # fmt: skip
+    defaults = DEFAULTS
+    summary = "spring nets that move it as far as they can (|x_end - x_start|)"
+    strategies = ("alton", "ga", "hybrid")
+    fitness_label = "distance (m)"
+    default_executor = "serial"
+
+    def create_run(
+        self,
+        store: RunStore,
+        *,
+        subject: str,
+        file_values: Mapping[str, Any],
+        options: Mapping[str, Any],
+    ) -> int:
+        """Record a new run of spring nets for the figure ``subject`` (no generation yet).
+
+        Args:
+            store: the run store.
+            subject: the figure's name.
+            file_values: a run file's contents (see `sinews.experiments.run_config`).
+            options: command-line values (None = not given): population,
+                generations, seed, seconds, masses, strategy, keep (a keep file,
+                or generation → indices that must survive it)...
+
+        Returns:
+            The run's id.
+        """
+        check_options(options, DEFAULTS, CONTROLLER)
+        if isinstance(options.get("keep"), str | Path):
+            options = {**options, "keep": read_keep_file(options["keep"])}
+        config, extra = build_config(
+            file_values=file_values,
+            options={**options, "figure": subject},
+            defaults=DEFAULTS,
+            term_defaults=TERMS,
+            kind_keys=_KIND_KEYS,
+        )
+        settings = SpringNetSettings.from_values(extra)
+        keep = _keep(extra.get("keep") or {})
+        if any(i >= config.population for chosen in keep.values() for i in chosen):
+            raise SinewsError(f"keep: indices must be below the population ({config.population})")
+        check_strategy(self, config)
+        Strategies(_genomes(settings)).new(config.to_dict(), config.seed)  # bad options fail here
+        return store.create_run(
+            f"{CONTROLLER}-{settings.figure}",
+            config={**config.to_dict(), **settings.to_dict(), "keep": keep},
+            seed=config.seed,
+            genome_codec="float64",
+        )
+
+    def run(
+        self,
+        store: RunStore,
+        run_id: int,
+        *,
+        evaluator: Evaluator,
+        generations: int | None = None,
+        on_generation: Callable[[GenerationSummary], None] | None = None,
+    ) -> None:
+        """Run, resume or extend (to ``generations``) a run; hand picks come from its config."""
+        info = store.run(run_id)
+        settings, scorer = _scorer(info, evaluator)
+        keep = _keep(info.config.get("keep") or {})
+        continue_run(
+            store,
+            run_id,
+            scorer=scorer,
+            spec=scorer.spec,
+            strategies=Strategies(_genomes(settings)),
+            generations=generations,
+            picks=lambda generation: keep.get(str(generation), []),
+            on_generation=on_generation,
+        )
+
+    def pick(
+        self,
+        store: RunStore,
+        run_id: int,
+        generation: int,
+        picks: list[int],
+        *,
+        evaluator: Evaluator | None = None,
+        mutation: float | None = None,
+    ) -> GenerationSummary:
+        """``picks`` of ``generation`` (the last) survive; breed and score the next."""
+        settings, scorer = _scorer(store.run(run_id), evaluator or SerialEvaluator())
+        strategies = Strategies(_genomes(settings), mutation=mutation)
+        return record_picks(
+            store, run_id, generation, picks,
+            strategies=strategies, scorer=scorer, spec=scorer.spec,
+        )  # fmt: skip
+
+    def replay(
+        self,
+        store: RunStore,
+        individuals: Sequence[Individual],
+        *,
+        record_hz: float = 30.0,
+        forces: bool = False,
+    ) -> list[Replay]:
+        """Simulate stored nets of one run again (one batch) with their nets' motion."""
+        if forces:
+            raise SinewsError("figures have no force overlay; it is for dancer runs")
+        if not individuals:
+            return []
+        run_ids = {ind.run_id for ind in individuals}
+        if len(run_ids) != 1:
+            raise SinewsError("replay individuals of one run at a time")
+        settings = _settings(store.run(run_ids.pop()))
+        genes = np.stack([np.asarray(ind.genome, dtype=np.float64) for ind in individuals])
+        result, net = simulate(settings, genes, record_hz=record_hz)
+        assert net is not None
+        nets = settings.encoding.decode(genes)
+        figure = result.figure
+        outputs = np.arange(figure.n_actuators) % settings.masses
+        return [
+            Replay(
+                individual=ind,
+                trajectory=result.trajectory(k),
+                title=f"{figure.name}, generation {ind.generation} #{ind.index}",
+                summary=f"{abs(float(result.distance[k])):.3f} m",
+                distance=float(result.distance[k]),
+                figure=figure,
+                panel=NetPanel(
+                    positions=net[:, k],
+                    masses=nets.masses[k],
+                    springs=nets.springs[k],
+                    outputs=outputs,
+                    labels=figure.joints,
+                ),
+            )
+            for k, ind in enumerate(individuals)
+        ]
+
+    def genome_document(self, store: RunStore, individual: Individual) -> dict[str, Any]:
+        """The net as JSON: its genes, the decoded masses, springs and positions, the wiring."""
+        settings = _settings(store.run(individual.run_id))
+        genes = np.asarray(individual.genome, dtype=np.float64)[None]
+        controller = settings.controller(make_figure(settings.figure), genes)
+        net = controller.genome
+        return {
+            "kind": "springnet",
+            "schema_version": 1,
+            "figure": settings.figure,
+            "genes": genes[0].tolist(),
+            "masses": net.masses[0].tolist(),
+            "springs": net.springs[0].tolist(),
+            "positions": net.positions[0].tolist(),
+            "outputs": controller.outputs.tolist(),
+            "gain": controller.gain.tolist(),
+            "offset": controller.offset.tolist(),
+            "ts": controller.ts,
+        }
+
+    def genome_text(self, individual: Individual) -> str | None:
+        """None: a net has no short text form (see `genome_document`)."""
+        return None
+
+
+KIND = SpringNetKind()
+"""The spring-net kind (registered in `sinews.experiments.kinds.BUILT_IN`)."""
+
+
+def _genomes(settings: SpringNetSettings) -> GenomeSpace:
+    return GenomeSpace(size=settings.encoding.size)
+
+
+def _settings(info: RunInfo) -> SpringNetSettings:
+    if not info.kind.startswith(f"{CONTROLLER}-"):
+        raise SinewsError(f"run {info.id} evolves {info.kind}, not spring nets")
+    return SpringNetSettings.from_values(info.config)
+
+
+def _scorer(info: RunInfo, evaluator: Evaluator) -> tuple[SpringNetSettings, SpringNetScorer]:
+    settings = _settings(info)
+    spec = EvolutionConfig.from_dict(info.config).fitness
+    return settings, SpringNetScorer(settings=settings, spec=spec, evaluator=evaluator)
+
+
+def _keep(value: object) -> dict[str, list[int]]:
+    """Hand picks as stored: generation (as a JSON key) → distinct indices."""
+    if not isinstance(value, Mapping):
+        raise SinewsError("keep must map generations to lists of indices")
+    keep: dict[str, list[int]] = {}
+    for generation, indices in value.items():
+        try:
+            number = int(generation)
+            chosen = [int(i) for i in indices]
+        except (TypeError, ValueError):
+            raise SinewsError("keep must map generations to lists of indices") from None
+        if number < 0 or any(i < 0 for i in chosen) or len(set(chosen)) != len(chosen):
+            raise SinewsError(f"keep: bad picks for generation {generation}")
+        keep[str(number)] = chosen
+    return keep

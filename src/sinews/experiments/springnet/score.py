@@ -1,0 +1,68 @@
+"""Scoring spring-net controllers (seed 001): the paper's distance travelled.
+
+The fitness is ``|x_final - x_initial|`` of the figure's root. The simulation
+is deterministic and a net's motion does not depend on who else is in the
+batch, so a genome's fitness depends on its genes alone: the scorer does not
+simulate the survivors of the last generation again (a fifth of the work of
+the paper's GA; see `sinews.experiments.score_memory`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import numpy.typing as npt
+
+from sinews.evolve import Evaluator, FitnessSpec, SerialEvaluator
+from sinews.experiments.evolution import Scores
+from sinews.experiments.figures import distance_travelled
+from sinews.experiments.score_memory import ChunkContext, ScoreMemory, score_in_chunks
+from sinews.experiments.springnet.settings import TERMS, SpringNetSettings
+from sinews.experiments.springnet.simulate import simulate
+
+__all__ = ["SpringNetScorer", "score_chunk"]
+
+FloatArray = npt.NDArray[np.float64]
+
+
+def score_chunk(context: ChunkContext[SpringNetSettings], genes: FloatArray) -> Scores:
+    """The evaluator's work unit: simulate a chunk of (k, G) nets and measure the distance.
+
+    Returns:
+        Scores with one term column, ``distance`` (m); a net's numbers depend
+        only on its genes and the settings.
+    """
+    result, _ = simulate(context.settings, genes, nthread=context.nthread)
+    return Scores(terms=distance_travelled(result)[:, None], failed=result.failed.copy())
+
+
+@dataclass(eq=False)
+class SpringNetScorer:
+    """Scores populations of nets in chunks on an evaluator, remembering the last generation.
+
+    Attributes:
+        settings: the run's settings.
+        spec: the fitness spec.
+        evaluator: where the chunks run.
+    """
+
+    settings: SpringNetSettings
+    spec: FitnessSpec
+    evaluator: Evaluator
+    _memory: ScoreMemory = field(default_factory=ScoreMemory, repr=False)
+
+    @property
+    def term_names(self) -> tuple[str, ...]:
+        """``("distance",)``."""
+        return tuple(TERMS)
+
+    def __call__(self, genomes: FloatArray, seeds: npt.NDArray[np.int64]) -> Scores:
+        """Score (P, G) genes (the seeds are unused: the simulation has no noise)."""
+        nthread = None if isinstance(self.evaluator, SerialEvaluator) else 1
+        context = ChunkContext(self.settings, nthread)
+
+        def simulate(rows: npt.NDArray[np.intp]) -> Scores:
+            return score_in_chunks(self.evaluator, score_chunk, context, genomes[rows])
+
+        return self._memory.score([row.tobytes() for row in genomes], simulate)

@@ -1,0 +1,63 @@
+"""Tempo level and phase of the beat tracker on synthetic onset envelopes."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from sinews.music.beats import onset_envelope, tempo_prior, track
+
+FPS = 60.0
+
+
+def _clicks(times: np.ndarray, seconds: float, weights: np.ndarray | None = None) -> np.ndarray:
+    env = np.zeros(round(seconds * FPS))
+    frames = np.round(times * FPS).astype(int)
+    keep = frames < len(env)
+    env[frames[keep]] = 1.0 if weights is None else weights[keep]
+    return env
+
+
+def test_prior_is_flat_over_the_tapping_range() -> None:
+    assert tempo_prior(90.0) == tempo_prior(135.0) == tempo_prior(180.0) == 1.0
+    assert tempo_prior(60.0) < 0.5 and tempo_prior(240.0) < 0.5
+
+
+@pytest.mark.parametrize("bpm", [96.0, 120.0, 150.0])
+def test_steady_beats_at_their_own_level_and_phase(bpm: float) -> None:
+    # strong beats with weak off-beats between: the beats' level, on the beats
+    period = 60.0 / bpm
+    beats = np.arange(0.3, 40.0, period)
+    halves = beats + period / 2
+    times = np.sort(np.concatenate([beats, halves]))
+    weights = np.where(np.isin(times, beats), 1.0, 0.3)
+    tempo, found = track(_clicks(times, 40.0, weights), FPS)
+    assert tempo == pytest.approx(bpm, rel=0.02)
+    error = np.abs(found[:, None] - beats[None, :]).min(axis=1)
+    assert np.mean(error < 0.035) > 0.95
+
+
+def test_slow_pulse_with_busy_eighths_is_tapped_in_range() -> None:
+    # 60 BPM with every eighth equally loud: a listener taps 120, not 60
+    eighths = np.arange(0.2, 40.0, 0.5)
+    tempo, _ = track(_clicks(eighths, 40.0), FPS)
+    assert 90.0 <= tempo <= 180.0
+
+
+def test_track_is_deterministic() -> None:
+    rng = np.random.default_rng(3)
+    env = _clicks(np.arange(0.1, 30.0, 0.45), 30.0) + 0.2 * rng.random(round(30 * FPS))
+    first = track(env, FPS)
+    second = track(env.copy(), FPS)
+    assert first[0] == second[0] and np.array_equal(first[1], second[1])
+
+
+def test_envelope_balances_registers() -> None:
+    # a loud high register must not drown a low one: each group is scaled to unit std
+    rng = np.random.default_rng(0)
+    onset = rng.random((600, 4)).astype(np.float32)
+    onset[:, 2:] *= 100.0
+    centres = np.array([60.0, 200.0, 2000.0, 8000.0])
+    env = onset_envelope(onset, centres)
+    low = onset_envelope(onset[:, :1], centres[:1])
+    assert np.corrcoef(env, low)[0, 1] > 0.3
