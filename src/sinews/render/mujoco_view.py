@@ -111,8 +111,8 @@ def _first_line(exc: BaseException) -> str:
 class FollowCamera:
     """A camera that follows a body and keeps a point in view.
 
-    It looks at a point between the body and ``keep`` (``keep_share`` of the
-    way), at ``height`` above the floor, from ``distance`` m (grown with the
+    It looks at a point between the body (at ``height`` above the floor) and
+    ``keep`` (``keep_share`` of the way), from ``distance`` m (grown with the
     gap to ``keep``), turned ``azimuth`` degrees about z and ``elevation``
     degrees (negative looks down). The look-at point follows with a lag of
     ``lag`` seconds (0: none), so hops do not shake the picture.
@@ -222,8 +222,8 @@ class MujocoView:
         gap = 0.0
         if spec.keep is not None:
             keep = np.asarray(spec.keep, dtype=np.float64)
-            goal[:2] += spec.keep_share * (keep[:2] - root[:2])
-            gap = float(np.hypot(*(keep[:2] - root[:2])))
+            goal += spec.keep_share * (keep - goal)
+            gap = float(np.linalg.norm(keep - np.array([root[0], root[1], spec.height])))
         if self._lookat is None or spec.lag <= 0.0:
             self._lookat = goal
         else:
@@ -357,10 +357,12 @@ def save_strobe_3d(
     picks = np.unique(np.linspace(0, len(frames) - 1, count).round().astype(int))
     chosen = camera if camera is not None else default_camera(model, frames[0])
     path_xy = frames[:, :2]
-    middle = (path_xy.min(axis=0) + path_xy.max(axis=0)) / 2
     span = float(np.ptp(path_xy, axis=0).max())
-    chosen = replace(chosen, keep=(float(middle[0]), float(middle[1]), 0.0), keep_share=1.0,
-                     lag=0.0, distance=chosen.distance + 0.8 * span)  # fmt: skip
+    if chosen.keep is None:  # look at the middle of the path
+        middle = (path_xy.min(axis=0) + path_xy.max(axis=0)) / 2
+        chosen = replace(chosen, keep=(float(middle[0]), float(middle[1]), chosen.height),
+                         keep_share=1.0)  # fmt: skip
+    chosen = replace(chosen, lag=0.0, distance=chosen.distance + 0.8 * span)
     with MujocoView(model, size[0], size[1], camera=chosen, shadows=shadows) as view:
         # the camera looks at the middle of the path: aim from the first pose
         image = view.frame(frames[picks[-1]], ghosts=[frames[k] for k in picks[:-1]])
