@@ -35,6 +35,8 @@ from sinews.experiments.springnet.run import KIND
 from sinews.experiments.springnet.settings import SpringNetSettings
 from sinews.experiments.springnet.simulate import simulate
 from sinews.figures import Figure, humanoid, luxo, require_mujoco, rollout, snake
+from sinews.figures.humanoid3d import humanoid3d
+from sinews.figures.luxo3d import luxo3d
 from sinews.store import RunStore
 
 __all__ = ["run"]
@@ -108,11 +110,12 @@ def _evolution(population: int, generations: int, seconds: float) -> Measurement
 
 
 def run(quick: bool = False) -> list[Measurement]:
-    """Luxo, snake and humanoid at P = 256 and 2000 for 0.5 s (quick: P = 64, 0.2 s),
+    """Luxo, snake, humanoid and the 3D lamp and humanoid at P = 256 and 2000 for 0.5 s
+    (quick: P = 64, 0.2 s),
     then the paper's largest snake run (quick: 3 generations of 200 nets for 1 s)."""
     sizes, steps, repeats = ((64,), 200, 2) if quick else ((256, 2000), 500, 3)
     results = []
-    for figure in (luxo(), snake(), humanoid()):
+    for figure in (luxo(), snake(), humanoid(), luxo3d(), humanoid3d()):
         _ours(figure, 2, CHUNK)()  # compile or load the numba cache
         for size in sizes:
             ours, reference = _ours(figure, size, steps), _reference(figure, size, steps)

@@ -21,11 +21,19 @@ import numpy.typing as npt
 
 from sinews.errors import SinewsError
 from sinews.figures import Figure, RolloutResult, humanoid, luxo, snake
+from sinews.figures.humanoid3d import humanoid3d
+from sinews.figures.luxo3d import luxo3d
 
 __all__ = ["FIGURES", "distance_travelled", "make_figure", "parse_keep", "read_keep_file"]
 
-FIGURES: dict[str, Callable[[], Figure]] = {"snake": snake, "luxo": luxo, "humanoid": humanoid}
-"""The built-in figures by name."""
+FIGURES: dict[str, Callable[[], Figure]] = {
+    "snake": snake,
+    "luxo": luxo,
+    "humanoid": humanoid,
+    "luxo3d": luxo3d,
+    "humanoid3d": humanoid3d,
+}
+"""The built-in figures by name (``luxo3d`` and ``humanoid3d`` are 3D: a free root)."""
 
 
 def make_figure(name: str) -> Figure:

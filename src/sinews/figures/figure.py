@@ -1,4 +1,4 @@
-"""`Figure`: an articulated planar figure as data, made from any suitable MJCF.
+"""`Figure`: an articulated figure (planar or 3D) as data, made from any suitable MJCF.
 
 A figure is its MJCF text plus what a controller and a fitness term need to
 know without reading XML: the actuated joints in actuator order, their neutral
@@ -14,7 +14,8 @@ so a user's own MJCF works exactly like the built-in figures if it has
 
 - a planar root: the first body's first three joints are slide x, slide z and
   hinge y (named as the user likes; the built-ins call them ``root_x``,
-  ``root_z``, ``root_pitch``), and
+  ``root_z``, ``root_pitch``), or with ``root="free"`` a 3D figure whose
+  first body's first joint is a free joint, and
 - one ``<position kp=… kv=…>`` servo per actuated joint, no other actuators.
 
 The initial state of a rollout is the model's default (``qpos0``), and the
@@ -50,7 +51,7 @@ class FigureError(SinewsError):
 
 @dataclass(frozen=True, eq=False)
 class Figure:
-    """An articulated planar figure: its MJCF and what is needed to drive and sense it.
+    """An articulated figure: its MJCF and what is needed to drive and sense it.
 
     Build with `Figure.from_mjcf` (or a builder such as `sinews.figures.luxo`).
 
@@ -71,7 +72,9 @@ class Figure:
         limb_bodies: bodies that must not rest on the floor (a lamp's arms, a
             person's legs, arms and trunk): one that touches it means the
             figure is down. Each has a contact-force column.
-        sites: sites whose world x and z are sensor columns (e.g. a hand).
+        sites: sites whose world x and z are sensor columns (e.g. a hand); with a
+            free root their x, y, z and their place in the heading frame.
+        root: ``"planar"`` (slide x, slide z, hinge y) or ``"free"`` (3D).
     """
 
     name: str
@@ -89,6 +92,7 @@ class Figure:
     touch_bodies: tuple[str, ...] = ()
     sites: tuple[str, ...] = ()
     limb_bodies: tuple[str, ...] = ()
+    root: str = "planar"
 
     @property
     def n_actuators(self) -> int:
@@ -99,6 +103,16 @@ class Figure:
     def n_sensors(self) -> int:
         """Number of sensor columns S."""
         return len(self.sensor_names)
+
+    @property
+    def force_axes(self) -> str:
+        """Axes of each contact body's force columns: ``"xz"`` (planar) or ``"xyz"`` (free)."""
+        return "xyz" if self.root == "free" else "xz"
+
+    @property
+    def tilt_column(self) -> str:
+        """The column whose magnitude is how far the root leans from its rest attitude."""
+        return "root_tilt" if self.root == "free" else "root_pitch"
 
     @property
     def contact_bodies(self) -> tuple[str, ...]:
@@ -135,8 +149,10 @@ class Figure:
         touch_bodies: Sequence[str] = (),
         sites: Sequence[str] = (),
         limb_bodies: Sequence[str] = (),
+        root: str = "planar",
+        floor_only: Sequence[str] = (),
     ) -> Figure:
-        """Make a figure from MJCF text with a planar root and position servos.
+        """Make a figure from MJCF text with a planar (or free) root and position servos.
 
         Args:
             xml: the MJCF document.
@@ -148,6 +164,9 @@ class Figure:
             sites: sites whose world position is sensed.
             limb_bodies: bodies whose floor contact means the figure is down
                 (their sensors feel the floor only).
+            root: ``"planar"`` or ``"free"`` (the first body's first joint is free).
+            floor_only: further contact bodies whose sensors feel only the floor
+                (e.g. a 3D person's head, which its own hand may touch).
 
         Returns:
             The figure, whose MJCF has a contact sensor per base/head/touch body
@@ -166,13 +185,19 @@ class Figure:
         missing = [s for s in sites if _id(model, "site", s) < 0]
         if missing:
             raise FigureError(f"{name}: no site named {', '.join(map(repr, missing))}")
-        _check_planar_root(model, name)
+        if root == "free":
+            _check_free_root(model, name)
+        elif root == "planar":
+            _check_planar_root(model, name)
+        else:
+            raise FigureError(f"{name}: the root is 'planar' or 'free', not {root!r}")
         limbs_only = [
             b for b in limb_bodies if b not in (*base_bodies, *head_bodies, *touch_bodies)
         ]
+        limbs_only += [b for b in floor_only if b in contact and b not in limbs_only]
         xml = _with_sensors(xml, contact, sites, on_floor=limbs_only)
         model = _compile(xml)
-        joints, kp, kv = _servos(model, name)
+        joints, kp, kv = _servos(model, name, first_joint=1 if root == "free" else 3)
         qpos0 = np.array([model.qpos0[model.joint(j).qposadr[0]] for j in joints])
         rest = qpos0 if neutral is None else np.array(neutral, dtype=np.float64)
         if rest.shape != (len(joints),) or not np.isfinite(rest).all():
@@ -196,10 +221,11 @@ class Figure:
             head_bodies=tuple(head_bodies),
             body_names=bodies,
             edges=edges,
-            sensor_names=sensor_columns(joints, contact, sites),
+            sensor_names=sensor_columns(joints, contact, sites, root),
             touch_bodies=tuple(touch_bodies),
             sites=tuple(sites),
             limb_bodies=tuple(limb_bodies),
+            root=root,
         )
 
 
@@ -233,6 +259,19 @@ def _check_planar_root(model: mujoco.MjModel, name: str) -> None:
         )
 
 
+def _check_free_root(model: mujoco.MjModel, name: str) -> None:
+    mujoco = require_mujoco()
+    if not (
+        model.njnt >= 1
+        and model.jnt_bodyid[0] == 1
+        and model.jnt_type[0] == mujoco.mjtJoint.mjJNT_FREE
+        and model.body_parentid[1] == 0
+    ):
+        raise FigureError(f"{name}: the first body's first joint must be a free joint")
+    if (model.jnt_type[1:] == mujoco.mjtJoint.mjJNT_FREE).any():
+        raise FigureError(f"{name}: only the root may have a free joint")
+
+
 def _with_sensors(
     xml: str, bodies: Sequence[str], sites: Sequence[str], on_floor: Sequence[str] = ()
 ) -> str:
@@ -262,8 +301,13 @@ def _with_sensors(
     return ET.tostring(root, encoding="unicode") + "\n"
 
 
-def _servos(model: mujoco.MjModel, name: str) -> tuple[tuple[str, ...], FloatArray, FloatArray]:
-    """Actuated joint names, kp and kv of the position servos, in actuator order."""
+def _servos(
+    model: mujoco.MjModel, name: str, first_joint: int = 3
+) -> tuple[tuple[str, ...], FloatArray, FloatArray]:
+    """Actuated joint names, kp and kv of the position servos, in actuator order.
+
+    Servos may drive joints from ``first_joint`` on (the root's joints come first).
+    """
     mujoco = require_mujoco()
     joints = []
     for a in range(model.nu):
@@ -274,7 +318,7 @@ def _servos(model: mujoco.MjModel, name: str) -> tuple[tuple[str, ...], FloatArr
             and model.actuator_biastype[a] == mujoco.mjtBias.mjBIAS_AFFINE
             and kp > 0
             and model.actuator_biasprm[a, 1] == -kp
-            and model.actuator_trnid[a, 0] >= 3
+            and model.actuator_trnid[a, 0] >= first_joint
         )
         if not servo:
             label = model.actuator(a).name or f"#{a}"

@@ -22,7 +22,7 @@ import numpy.typing as npt
 from sinews.figures._mujoco import require_mujoco
 from sinews.figures._population import Population
 from sinews.figures.figure import Figure
-from sinews.figures.sensors import SensorReader
+from sinews.figures.sensors import make_reader
 from sinews.trajectory import Trajectory
 
 if TYPE_CHECKING:
@@ -149,7 +149,7 @@ def rollout(
     sim = Population(model, n_individuals, threads, max_speed)
     if figure.sites:  # site positions are read at t = 0 too (contact forces are 0 until a step)
         sim.batch.forward(stage=require_mujoco().mjtStage.mjSTAGE_POS)
-    reader = SensorReader(model, figure.joints, figure.contact_bodies, figure.sites)
+    reader = make_reader(model, figure.joints, figure.contact_bodies, figure.sites, figure.root)
     sensors = np.empty((n_individuals, reader.n_columns))
     initial_x = sim.qpos[:, 0].copy()
     total = n_ticks * substeps

@@ -15,9 +15,10 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from sinews.figures._mujoco import require_mujoco
 from sinews.figures.figure import Figure, FigureError
 
-__all__ = ["TERMS", "Goal", "Task"]
+__all__ = ["STYLE", "TERMS", "Goal", "Task", "Wave", "standing_height"]
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -26,25 +27,91 @@ TERMS = ("distance", "early", "still", "head", "fallen", "neutral", "energy", "t
 always the main goal."""
 
 
+STYLE = {"early": 0.2, "still": 0.5, "head": 3.0, "fallen": 2.0, "neutral": 0.1, "energy": 0.0}
+"""Full style weights of the built-in tasks (the main goal ``distance`` weighs 1)."""
+
+
+def standing_height(figure: Figure) -> float:
+    """How tall the figure stands at rest: the top of its highest geom, m above the floor."""
+    mujoco = require_mujoco()
+    model = figure.model()
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    tops = []
+    for g in range(model.ngeom):
+        if model.geom_bodyid[g] == 0:
+            continue
+        up = data.geom_xmat[g].reshape(3, 3)[2]  # the world z of each local axis
+        size, kind = model.geom_size[g], model.geom_type[g]
+        if kind == mujoco.mjtGeom.mjGEOM_SPHERE:
+            reach = size[0]
+        elif kind == mujoco.mjtGeom.mjGEOM_CAPSULE:
+            reach = abs(up[2]) * size[1] + size[0]
+        else:  # the geom's bounding box
+            reach = float(np.abs(up) @ model.geom_aabb[g, 3:]) + float(up @ model.geom_aabb[g, :3])
+        tops.append(data.geom_xpos[g, 2] + reach)
+    return float(max(tops))
+
+
+@dataclass(frozen=True)
+class Wave:
+    """A wave of the tracked point: the ``distance`` of a `Goal` with a wave is how far the
+    motion falls short of it, m (see `sinews.figures.terms`).
+
+    Over the last ``window`` seconds, the first axis of tracked − target (e.g. the hand's
+    sideways offset from the shoulder) must swing at ``rate`` Hz with at least
+    ``amplitude`` m (the amplitude of its Fourier component at that rate), and the second
+    (e.g. the hand's height over the shoulder) must stay above 0.
+
+    Attributes:
+        rate: Hz.
+        amplitude: m.
+        window: s, at the end of the trial.
+    """
+
+    rate: float = 1.5
+    amplitude: float = 0.1
+    window: float = 1.5
+
+    def __post_init__(self) -> None:
+        if not (self.rate > 0 and self.amplitude > 0 and self.window > 0):
+            raise FigureError("a wave needs a positive rate, amplitude and window")
+
+
 @dataclass(frozen=True)
 class Goal:
     """Where a point of the figure must get to.
 
+    Three kinds: a **position** (the tracked point on the target); a **direction**
+    (with ``origin``: the angle at the origin between the tracked point and the
+    target, rad — pointing); a **wave** (with ``wave``, see `Wave`).
+
     Attributes:
         tracked: sensor columns of the point, one per axis (e.g. ``("root_x",)``).
         target: per axis a fixed coordinate, m, or a sensor column (a moving target).
-        names: the goal-relative terminal of each axis, target − tracked.
-        radius: the point has arrived within this distance, m.
+        names: the goal-relative terminal of each axis, target − tracked; or none
+            (e.g. when the task offers the goal in the heading frame among its sensors).
+        radius: the point has arrived within this distance, m (rad for a direction).
+        origin: sensor columns of the origin of a direction goal, one per axis, or none.
+        wave: a wave goal's rate, amplitude and window, or None.
     """
 
     tracked: tuple[str, ...]
     target: tuple[float | str, ...]
     names: tuple[str, ...]
     radius: float = 0.05
+    origin: tuple[str, ...] = ()
+    wave: Wave | None = None
 
     def __post_init__(self) -> None:
-        if not (len(self.tracked) == len(self.target) == len(self.names) >= 1):
+        if not (len(self.tracked) == len(self.target) >= 1):
             raise FigureError("a goal needs one tracked column, target and name per axis")
+        if len(self.names) not in (0, len(self.tracked)):
+            raise FigureError("a goal needs one tracked column, target and name per axis")
+        if len(self.origin) not in (0, len(self.tracked)):
+            raise FigureError("a direction goal needs one origin column per axis")
+        if self.wave is not None and (self.origin or len(self.tracked) != 2):
+            raise FigureError("a wave goal tracks two axes (swing, height) and has no origin")
         if not self.radius > 0:
             raise FigureError(f"the goal radius must be positive, got {self.radius}")
 
@@ -82,7 +149,7 @@ class Task:
         unknown = [t for t in self.weights if t not in TERMS]
         if unknown or next(iter(self.weights), None) != "distance":
             raise FigureError(f"{self.name}: weights must start with 'distance' and use {TERMS}")
-        for column in (*self.sensors, *self.goal.tracked, *self.goal.target):
+        for column in (*self.sensors, *self.goal.tracked, *self.goal.target, *self.goal.origin):
             if isinstance(column, str):
                 self.figure.sensor_index(column)
         if not self.joints:
@@ -114,6 +181,8 @@ class Task:
         for v, column in enumerate(self.sensors):
             weights[index(column), v] = 1.0
         first = len(self.sensors)
+        if not self.goal.names:
+            return weights, offset
         for axis, (tracked, target) in enumerate(
             zip(self.goal.tracked, self.goal.target, strict=True)
         ):

@@ -21,24 +21,24 @@ import xml.etree.ElementTree as ET
 from collections.abc import Callable, Mapping
 from typing import Any
 
-import numpy as np
-
-from sinews.figures._mujoco import require_mujoco
 from sinews.figures.figure import Figure, FigureError
 from sinews.figures.humanoid import humanoid
 from sinews.figures.luxo import luxo
 from sinews.figures.mjcf import fmt
-from sinews.figures.task import TERMS, Goal, Task
+from sinews.figures.task import STYLE, TERMS, Goal, Task, Wave, standing_height
+from sinews.figures.tasks3d import TASKS_3D
 from sinews.figures.terms import TaskMeter
 
 __all__ = [
     "LIMBO_BOARD_TOP",
     "LIMBO_SHARE",
+    "STYLE",
     "TASKS",
     "TERMS",
     "Goal",
     "Task",
     "TaskMeter",
+    "Wave",
     "humanoid_reach",
     "luxo_hop",
     "luxo_limbo",
@@ -47,32 +47,7 @@ __all__ = [
 ]
 
 
-def standing_height(figure: Figure) -> float:
-    """How tall the figure stands at rest: the top of its highest geom, m above the floor."""
-    mujoco = require_mujoco()
-    model = figure.model()
-    data = mujoco.MjData(model)
-    mujoco.mj_kinematics(model, data)
-    tops = []
-    for g in range(model.ngeom):
-        if model.geom_bodyid[g] == 0:
-            continue
-        up = data.geom_xmat[g].reshape(3, 3)[2]  # the world z of each local axis
-        size, kind = model.geom_size[g], model.geom_type[g]
-        if kind == mujoco.mjtGeom.mjGEOM_SPHERE:
-            reach = size[0]
-        elif kind == mujoco.mjtGeom.mjGEOM_CAPSULE:
-            reach = abs(up[2]) * size[1] + size[0]
-        else:  # the geom's bounding box
-            reach = float(np.abs(up) @ model.geom_aabb[g, 3:]) + float(up @ model.geom_aabb[g, :3])
-        tops.append(data.geom_xpos[g, 2] + reach)
-    return float(max(tops))
-
-
 # -- the built-in tasks --------------------------------------------------------
-
-STYLE = {"early": 0.2, "still": 0.5, "head": 3.0, "fallen": 2.0, "neutral": 0.1, "energy": 0.0}
-"""Full style weights of the built-in tasks (the main goal ``distance`` weighs 1)."""
 
 LUXO_SENSORS = (
     "time",
@@ -221,8 +196,9 @@ TASKS: Mapping[str, Callable[..., Task]] = {
     "luxo-hop": luxo_hop,
     "luxo-limbo": luxo_limbo,
     "humanoid-reach": humanoid_reach,
+    **TASKS_3D,
 }
-"""The built-in tasks by name."""
+"""The built-in tasks by name: the planar ones and the 3D ones (`sinews.figures.tasks3d`)."""
 
 
 def make_task(name: str, **options: Any) -> Task:

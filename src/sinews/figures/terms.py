@@ -8,7 +8,11 @@ The terms (`TERMS`), each **higher is better** (penalties are ≤ 0), as
 `sinews.evolve.fitness` expects:
 
 - ``distance`` (the main goal): minus the tracked point's distance to the
-  target at the end, m.
+  target at the end, m. For a direction goal (pointing), minus the angle at
+  the origin between the tracked point and the target at the end, rad; for a
+  wave, minus how far the last seconds fall short of the wave, m (the
+  missing amplitude at the wave's rate plus the mean depth below the
+  required height).
 - ``early``: 1 − (time of first arrival within ``goal.radius``) / duration;
   0 if it never arrives. "Bonus for completing the motion early."
 - ``still``: minus the path length of the tracked point after it first
@@ -62,12 +66,18 @@ class TaskMeter:
         self._head = _force_columns(figure, figure.head_bodies)
         self._touch = _force_columns(figure, figure.touch_bodies)
         self._limbs = _force_columns(figure, figure.limb_bodies)
-        self._root = index("root_z"), index("root_pitch")
+        self._root = index("root_z"), index(figure.tilt_column)
         self._q = [index(f"q_{j}") for j in figure.joints]
         self._dq = [index(f"dq_{j}") for j in figure.joints]
         self._driven = task.actuators
         self._torque = np.abs(figure.model().actuator_forcerange).max(axis=1)
+        goal = task.goal
+        self._origin = [index(c) for c in goal.origin]
+        self._wave = goal.wave
         n = n_individuals
+        self._wave_sums = np.zeros((n, 4))  # Σ y·sin, Σ y·cos, Σ depth below, Σ y
+        self._wave_basis = np.zeros(2)  # Σ sin, Σ cos
+        self._wave_count = 0
         self._count = 0
         self._last_t = 0.0
         self._arrival = np.full(n, np.inf)
@@ -85,7 +95,12 @@ class TaskMeter:
         """Take one observation (the rollout's `Observer` signature)."""
         point = sensors[:, self._tracked]
         goal = np.where(self._moving, sensors[:, self._goal_column], self._goal_fixed)
-        self._distance = np.linalg.norm(point - goal, axis=1)
+        if self._wave is not None:
+            self._distance = self._waving(t, point - goal)
+        elif self._origin:
+            self._distance = _angle(point, goal, sensors[:, self._origin])
+        else:
+            self._distance = np.linalg.norm(point - goal, axis=1)
         arrived = np.isfinite(self._arrival)
         self._path += np.where(arrived, np.linalg.norm(point - self._previous, axis=1), 0.0)
         self._arrival = np.where(
@@ -106,6 +121,31 @@ class TaskMeter:
         self._neutral = np.abs(q[:, self._driven] - neutral).mean(axis=1)
         self._count += 1
         self._last_t = t
+
+    def _waving(self, t: float, offset: FloatArray) -> FloatArray:
+        """Take a wave's tick (``offset``: tracked − target, (P, 2)); its shortfall so far."""
+        wave = self._wave
+        assert wave is not None
+        if t >= self.task.seconds - wave.window - 1e-9:
+            phase = 2.0 * np.pi * wave.rate * t
+            swing = offset[:, 0]
+            self._wave_sums[:, 0] += swing * np.sin(phase)
+            self._wave_sums[:, 1] += swing * np.cos(phase)
+            self._wave_sums[:, 2] += np.maximum(0.0, -offset[:, 1])
+            self._wave_sums[:, 3] += swing
+            self._wave_basis += (np.sin(phase), np.cos(phase))
+            self._wave_count += 1
+        n = self._wave_count
+        if n == 0:
+            return np.full(len(offset), wave.amplitude)
+        # the swing about its mean: a hand held still off to the side is no wave (over a
+        # window of a fractional number of periods its offset would leak into the sum)
+        mean = self._wave_sums[:, 3] / n
+        sine = self._wave_sums[:, 0] - mean * self._wave_basis[0]
+        cosine = self._wave_sums[:, 1] - mean * self._wave_basis[1]
+        amplitude = 2.0 * np.hypot(sine, cosine) / n
+        below = self._wave_sums[:, 2] / n
+        return np.maximum(0.0, wave.amplitude - amplitude) + below
 
     @property
     def observations(self) -> int:
@@ -133,7 +173,16 @@ class TaskMeter:
 
 
 def _force_columns(figure: Figure, bodies: tuple[str, ...]) -> list[int]:
-    return [figure.sensor_index(f"f{axis}_{body}") for body in bodies for axis in "xz"]
+    axes = figure.force_axes
+    return [figure.sensor_index(f"f{axis}_{body}") for body in bodies for axis in axes]
+
+
+def _angle(point: FloatArray, goal: FloatArray, origin: FloatArray) -> FloatArray:
+    """(P,) angle at ``origin`` between ``point`` and ``goal``, rad (π/2 where undefined)."""
+    a, b = point - origin, goal - origin
+    norms = np.linalg.norm(a, axis=1) * np.linalg.norm(b, axis=1)
+    cosine = np.einsum("pk,pk->p", a, b) / np.where(norms > 0.0, norms, 1.0)
+    return np.where(norms > 0.0, np.arccos(np.clip(cosine, -1.0, 1.0)), np.pi / 2)
 
 
 def _touching(sensors: FloatArray, columns: list[int]) -> npt.NDArray[np.bool_]:

@@ -2,7 +2,8 @@
 
 What is drawn follows from what a replay carries, not from the run's kind: a
 replay with an articulated figure is drawn as that figure (with its
-controller's panel and its task's marks); one without is drawn from its nodes
+controller's panel and its task's marks; a 3D figure by MuJoCo's own renderer,
+`sinews.render.mujoco_view`); one without is drawn from its nodes
 (a spring-mass dancer, with its song as sound in an MP4).
 """
 
@@ -74,6 +75,12 @@ def draw_replays(
         return render(first.trajectory, path, overlay=overlay, size=size, **sound)
     if overlay:
         raise SinewsError("the debug overlay is for spring-mass bodies, not figures")
+    if getattr(first.figure, "root", "planar") == "free":  # 3D: MuJoCo's own renderer
+        from sinews.render.mujoco_view import render_recordings_3d
+
+        recordings = [r.trajectory.qpos for r in replays if r.trajectory.qpos is not None]
+        return render_recordings_3d(first.figure.model(), recordings, path,
+                                    fps=first.trajectory.fps, width=size)  # fmt: skip
     pixels = (size, 3 * size // 4)
     geometry = FigureGeometry.of(first.figure)
     if len(replays) == 1:

@@ -50,6 +50,13 @@ CONTROLLER = "gp"
 TASKS: dict[str, dict[str, tuple[str, dict[str, Any]]]] = {
     "luxo": {"hop": ("luxo-hop", {}), "limbo": ("luxo-limbo", {})},
     "humanoid": {"reach": ("humanoid-reach", {}), "nose": ("humanoid-reach", {"target": "nose"})},
+    "luxo3d": {"hop": ("luxo3d-hop", {}), "limbo": ("luxo3d-limbo", {})},
+    "humanoid3d": {
+        "point": ("humanoid3d-point", {}),
+        "gesture": ("humanoid3d-gesture", {}),
+        "touch": ("humanoid3d-touch", {}),
+        "nose": ("humanoid3d-nose", {}),
+    },
 }
 """Figure → the task names of ``--task`` → the built-in task and its preset options."""
 DEFAULTS: dict[str, Any] = {
@@ -277,7 +284,7 @@ def _task(figure: str, given: Mapping[str, Any]) -> Task:
             raise SinewsError(f"the {short} task has no --target")
         options["target"] = _target(given["target"], name)
     if given.get("pole_height") is not None:
-        if name != "luxo-limbo":
+        if name not in ("luxo-limbo", "luxo3d-limbo"):
             raise SinewsError("--pole-height is for the limbo")
         options["pole_height"] = _number(given["pole_height"], "pole_height")
     if given.get("seconds") is not None:
@@ -291,15 +298,35 @@ def _number(value: object, name: str) -> float:
     return float(value)
 
 
-def _target(value: object, task: str) -> float | tuple[float, float]:
-    """``1.5`` for the lamp, ``"0.45,1.3"`` or ``[0.45, 1.3]`` for the humanoid's (x, z)."""
-    point = task == "humanoid-reach"
+_TARGET_AXES = {"humanoid-reach": "X,Z", "luxo3d-hop": "X,Y", "luxo3d-limbo": "X,Y",
+                "humanoid3d-point": "X,Y,Z", "humanoid3d-touch": "X,Y,Z"}  # fmt: skip
+"""Tasks whose ``--target`` is a point, and its axes (the others take a distance)."""
+
+
+def _target(value: object, task: str) -> float | tuple[float, ...]:
+    """``1.5`` for the lamp, ``"0.45,1.3"`` or ``[0.45, 1.3]`` for the humanoid's (x, z),
+    ``"1.0,0.5"`` for the 3D lamp's (x, y), ``"0.5,-0.2,1.2"`` for a 3D humanoid's point."""
+    if task in ("humanoid3d-gesture", "humanoid3d-nose"):
+        raise SinewsError(f"the {task} task has no --target")
+    axes = _TARGET_AXES.get(task)
+    if axes is not None:
+        return _numbers(value, task, axes)
     items: Any = value.split(",") if isinstance(value, str) else value
     try:
         numbers = [float(v) for v in (items if isinstance(items, list | tuple) else [items])]
     except (TypeError, ValueError):
         numbers = []
-    if len(numbers) == (2 if point else 1):
-        return (numbers[0], numbers[1]) if point else numbers[0]
-    shape = "X,Z in m" if point else "a distance in m"
-    raise SinewsError(f"--target for {task} must be {shape}, got {value!r}")
+    if len(numbers) == 1:
+        return numbers[0]
+    raise SinewsError(f"--target for {task} must be a distance in m, got {value!r}")
+
+
+def _numbers(value: object, task: str, axes: str) -> tuple[float, ...]:
+    items: Any = value.split(",") if isinstance(value, str) else value
+    try:
+        numbers = tuple(float(v) for v in (items if isinstance(items, list | tuple) else [items]))
+    except (TypeError, ValueError):
+        numbers = ()
+    if len(numbers) != axes.count(",") + 1:
+        raise SinewsError(f"--target for {task} must be {axes} in m, got {value!r}")
+    return numbers

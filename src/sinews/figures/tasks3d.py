@@ -1,0 +1,313 @@
+"""The 3D figures' motion tasks, as data (seed 003 in 3D): hop, limbo, point, wave, touch, nose.
+
+Each builder returns a `sinews.figures.tasks.Task` like the planar ones: the
+figure with its scene (a target is a **site in the world**, drawn by the
+renderer and sensed like a hand: its place in the body's heading frame is a
+sensor column), the goal, the driven joints (the rest hold the standing pose)
+and the terminals.
+
+"Terminals as in the paper": the lamp sees its joint angles, its height,
+velocity (forward, sideways, up, in its heading frame), how its base leans,
+the floor's force on the base, time, and the target in its heading frame
+(``f_target`` ahead, ``l_target`` to the left) — "its position relative to
+the goal point, its velocity, and the amount of force being imparted to its
+base". The humanoid sees the driven joints' angles, both feet's floor forces,
+its hand's position relative to the pelvis in the heading frame, time, and
+the target relative to the hand in that frame (``gf``, ``gl``, ``gu``).
+"""
+
+from __future__ import annotations
+
+import math
+import xml.etree.ElementTree as ET
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any
+
+from sinews.figures.figure import Figure, FigureError
+from sinews.figures.humanoid3d import humanoid3d
+from sinews.figures.luxo3d import luxo3d
+from sinews.figures.mjcf import fmt
+from sinews.figures.task import STYLE, Goal, Task, Wave, standing_height
+
+__all__ = [
+    "ARM_R",
+    "LUXO3D_SENSORS",
+    "TASKS_3D",
+    "humanoid3d_gesture",
+    "humanoid3d_nose",
+    "humanoid3d_point",
+    "humanoid3d_touch",
+    "luxo3d_hop",
+    "luxo3d_limbo",
+]
+
+LUXO3D_SENSORS = (
+    "time",
+    "q_base_hinge",
+    "q_elbow",
+    "q_neck",
+    "root_z",
+    "root_vf",
+    "root_vl",
+    "root_vz",
+    "root_lean_f",
+    "root_lean_l",
+    "fz_base",
+    "f_target",
+    "l_target",
+)
+"""The 3D lamp's terminals (besides the constants)."""
+
+ARM_R = ("shoulder_x_r", "shoulder_y_r", "shoulder_z_r", "elbow_r")
+"""The right arm's four hinges."""
+
+TARGET_RGBA = "0.85 0.15 0.15 1"
+
+
+def _floor_mark(world: ET.Element, x: float, y: float) -> None:
+    """A red X on the floor at (x, y) with the sensed site ``target`` at its centre."""
+    ET.SubElement(world, "site", {"name": "target", "type": "cylinder", "pos": fmt(x, y, 0.001),
+                                  "size": fmt(0.03, 0.001), "rgba": TARGET_RGBA})  # fmt: skip
+    for angle in (math.pi / 4, -math.pi / 4):
+        ET.SubElement(world, "site", {"type": "box", "pos": fmt(x, y, 0.001),
+                                      "euler": fmt(0, 0, angle), "size": fmt(0.12, 0.012, 0.001),
+                                      "rgba": TARGET_RGBA})  # fmt: skip
+
+
+def _check_floor_target(name: str, target: Sequence[float]) -> tuple[float, float]:
+    if len(target) != 2 or not all(math.isfinite(float(v)) for v in target):
+        raise FigureError(f"{name}: the target is x,y in m, got {target!r}")
+    x, y = float(target[0]), float(target[1])
+    if not 0.3 <= math.hypot(x, y) <= 2.0:
+        raise FigureError(f"{name}: the target must be 0.3 to 2 m from the start, got ({x}, {y})")
+    return x, y
+
+
+def _lamp_task(
+    name: str,
+    figure: Figure,
+    target: tuple[float, float],
+    weights: Mapping[str, float],
+    seconds: float,
+    params: Mapping[str, Any],
+) -> Task:
+    return Task(
+        name=name,
+        figure=figure,
+        goal=Goal(tracked=("root_x", "root_y"), target=target, names=()),
+        joints=("base_hinge", "elbow", "neck"),
+        sensors=LUXO3D_SENSORS,
+        weights=weights,
+        seconds=seconds,
+        params=params,
+    )
+
+
+def luxo3d_hop(target: Sequence[float] = (1.0, 0.5), *, seconds: float = 5.0) -> Task:
+    """Hop to the X at (x, y) on the floor, 0.3–2 m from the start in any direction.
+
+    The lamp starts facing +x, so a target off the axis means turning as well
+    as hopping. The main goal is the base centre's distance from the X at the
+    end; style as the planar lamp's (`STYLE`).
+    """
+    x, y = _check_floor_target("luxo3d-hop", target)
+    lamp = luxo3d()
+    root = ET.fromstring(lamp.xml)
+    world = root.find("worldbody")
+    assert world is not None
+    _floor_mark(world, x, y)
+    figure = _refigure(lamp, root, sites=("target",))
+    return _lamp_task("luxo3d-hop", figure, (x, y), {"distance": 1.0, **STYLE}, seconds,
+                      {"target": [x, y]})  # fmt: skip
+
+
+LIMBO3D_SHARE = 0.8
+"""The limbo bar's default height: this share of the lamp's standing height."""
+
+
+def luxo3d_limbo(
+    pole_height: float | None = None,
+    *,
+    target: Sequence[float] = (1.0, 0.0),
+    pole_radius: float = 0.02,
+    half_length: float = 1.5,
+    seconds: float = 5.0,
+) -> Task:
+    """Limbo: hop to the X passing under a bar whose underside is ``pole_height`` m up.
+
+    The bar lies across the straight path halfway to the X, ``2·half_length``
+    long, with a board above it up to 1 m (so the lamp cannot hop over; it
+    could walk round the 3 m bar, but that costs time and distance). Touching
+    bar or board costs the ``touch`` term, weight 5 ("a large penalty for
+    hitting his head on the limbo pole").
+    """
+    x, y = _check_floor_target("luxo3d-limbo", target)
+    lamp = luxo3d()
+    if pole_height is None:
+        pole_height = round(LIMBO3D_SHARE * standing_height(lamp), 4)
+    if not 0.0 < pole_height < 1.0:
+        raise FigureError("luxo3d-limbo: the bar must be 0-1 m high")
+    root = ET.fromstring(lamp.xml)
+    world = root.find("worldbody")
+    assert world is not None
+    _floor_mark(world, x, y)
+    height = pole_height + pole_radius
+    across = math.atan2(y, x)  # the bar's body x axis points along the path
+    pole = ET.SubElement(world, "body", {"name": "pole", "pos": fmt(x / 2, y / 2, height),
+                                         "euler": fmt(0, 0, across)})  # fmt: skip
+    collide = {"contype": "0", "conaffinity": "1", "rgba": "0.8 0.3 0.2 1"}
+    ET.SubElement(pole, "geom", {"name": "pole", "type": "capsule", "size": fmt(pole_radius),
+                                 "fromto": fmt(0, -half_length, 0, 0, half_length, 0),
+                                 **collide})  # fmt: skip
+    board = (1.0 - height - pole_radius) / 2
+    ET.SubElement(pole, "geom", {"name": "board", "type": "box",
+                                 "size": fmt(pole_radius / 2, half_length, board),
+                                 "pos": fmt(0, 0, pole_radius + board),
+                                 **collide, "rgba": "0.8 0.3 0.2 0.35"})  # fmt: skip
+    figure = _refigure(lamp, root, sites=("target",), touch_bodies=("pole",))
+    weights = {"distance": 1.0, **STYLE, "touch": 5.0}
+    params = {"pole_height": pole_height, "target": [x, y]}
+    return _lamp_task("luxo3d-limbo", figure, (x, y), weights, seconds, params)
+
+
+def _refigure(
+    figure: Figure,
+    root: ET.Element,
+    *,
+    sites: tuple[str, ...] = (),
+    touch_bodies: tuple[str, ...] = (),
+) -> Figure:
+    """``figure`` again from its edited MJCF, with further sensed sites and touch bodies."""
+    head = figure.head_bodies
+    return Figure.from_mjcf(
+        ET.tostring(root, encoding="unicode"),
+        name=figure.name,
+        base_bodies=figure.base_bodies,
+        head_bodies=head,
+        touch_bodies=touch_bodies,
+        sites=(*figure.sites, *sites),
+        limb_bodies=figure.limb_bodies,
+        root="free",
+        floor_only=head if figure.name == "humanoid3d" else (),
+    )
+
+
+# -- the humanoid --------------------------------------------------------------
+
+PERSON_STYLE = {**STYLE, "neutral": 0.0}
+"""The humanoid's style weights: the lamp's, without the neutral-pose bonus."""
+
+
+def _person(target: Sequence[float] | None = None) -> Figure:
+    """The humanoid with its hand, shoulder and nose sensed, and a target ball if given."""
+    person = humanoid3d()
+    root = ET.fromstring(person.xml)
+    sites: tuple[str, ...] = ("hand_r", "shoulder_r", "nose")
+    if target is not None:
+        world = root.find("worldbody")
+        assert world is not None
+        ET.SubElement(world, "site", {"name": "target", "type": "sphere", "size": "0.03",
+                                      "pos": fmt(*target), "rgba": TARGET_RGBA})  # fmt: skip
+        sites += ("target",)
+    return _refigure(person, root, sites=sites)
+
+
+def _point3(name: str, target: Sequence[float]) -> tuple[float, float, float]:
+    if len(target) != 3 or not all(math.isfinite(float(v)) for v in target):
+        raise FigureError(f"{name}: the target is x,y,z in m, got {target!r}")
+    x, y, z = (float(v) for v in target)
+    if not (math.hypot(x, y) <= 5.0 and 0.0 <= z <= 3.0):
+        raise FigureError(f"{name}: the target must be within 5 m and 0-3 m up, got {target!r}")
+    return x, y, z
+
+
+HAND = ("f_hand_r", "l_hand_r", "u_hand_r")
+"""The right fingertips in the heading frame, relative to the pelvis."""
+
+
+def _person_task(
+    name: str,
+    figure: Figure,
+    goal: Goal,
+    joints: tuple[str, ...],
+    seconds: float,
+    params: Mapping[str, Any],
+    *,
+    weights: Mapping[str, float] = PERSON_STYLE,
+    extra: tuple[str, ...] = (),
+) -> Task:
+    return Task(
+        name=name,
+        figure=figure,
+        goal=goal,
+        joints=joints,
+        sensors=("time", *(f"q_{j}" for j in joints), *extra, "fz_foot_l", "fz_foot_r", *HAND),
+        weights={"distance": 1.0, **weights},
+        seconds=seconds,
+        max_tilt=0.5,
+        min_height=-0.25,
+        params=params,
+    )
+
+
+def humanoid3d_touch(
+    target: Sequence[float] = (0.45, -0.25, 1.25), *, seconds: float = 3.0
+) -> Task:
+    """Touch a point (x, y, z) with the right fingertips (within 3 cm), turning the trunk if
+    needed: the right arm's four hinges and the waist's turn are driven (5)."""
+    point = _point3("humanoid3d-touch", target)
+    goal = Goal(tracked=HAND, target=("f_target", "l_target", "u_target"),
+                names=("gf", "gl", "gu"), radius=0.03)  # fmt: skip
+    return _person_task("humanoid3d-touch", _person(point), goal, (*ARM_R, "waist_z"), seconds,
+                        {"target": list(point)})  # fmt: skip
+
+
+def humanoid3d_point(target: Sequence[float] = (2.0, -1.5, 2.2), *, seconds: float = 3.0) -> Task:
+    """Point the right arm at a point (x, y, z): the angle at the shoulder between the
+    fingertips and the target must end within 5° and stay (``still``). Driven: the right
+    arm's four hinges and the waist's turn (5)."""
+    point = _point3("humanoid3d-point", target)
+    goal = Goal(tracked=HAND, target=("f_target", "l_target", "u_target"),
+                names=("gf", "gl", "gu"), radius=math.radians(5.0),
+                origin=("f_shoulder_r", "l_shoulder_r", "u_shoulder_r"))  # fmt: skip
+    return _person_task("humanoid3d-point", _person(point), goal, (*ARM_R, "waist_z"), seconds,
+                        {"target": list(point)})  # fmt: skip
+
+
+def humanoid3d_gesture(
+    rate: float = 1.5, *, amplitude: float = 0.1, window: float = 1.5, seconds: float = 4.0
+) -> Task:
+    """Wave: for the last ``window`` s the right hand is above the shoulder and swings
+    sideways at ``rate`` Hz by at least ``amplitude`` m. The right arm's four hinges are
+    driven; the terminals add their rates (an oscillator needs them)."""
+    wave = Wave(rate=float(rate), amplitude=float(amplitude), window=float(window))
+    if wave.window > seconds:
+        raise FigureError("humanoid3d-gesture: the wave's window is longer than the trial")
+    goal = Goal(tracked=("l_hand_r", "u_hand_r"), target=("l_shoulder_r", "u_shoulder_r"),
+                names=("gl", "gu"), radius=1e-3, wave=wave)  # fmt: skip
+    style = {"head": STYLE["head"], "fallen": STYLE["fallen"]}
+    return _person_task(
+        "humanoid3d-gesture", _person(), goal, ARM_R, seconds,
+        {"rate": wave.rate, "amplitude": wave.amplitude, "window": wave.window},
+        weights=style, extra=tuple(f"dq_{j}" for j in ARM_R),
+    )  # fmt: skip
+
+
+def humanoid3d_nose(*, seconds: float = 3.0) -> Task:
+    """Put the right fingertips on the tip of the nose (within 3 cm): the right arm's four
+    hinges and the neck's two are driven (6). The hand cannot pass into the head."""
+    goal = Goal(tracked=HAND, target=("f_nose", "l_nose", "u_nose"), names=("gf", "gl", "gu"),
+                radius=0.03)  # fmt: skip
+    return _person_task("humanoid3d-nose", _person(), goal, (*ARM_R, "neck_y", "neck_z"),
+                        seconds, {})  # fmt: skip
+
+
+TASKS_3D: Mapping[str, Callable[..., Task]] = {
+    "luxo3d-hop": luxo3d_hop,
+    "luxo3d-limbo": luxo3d_limbo,
+    "humanoid3d-point": humanoid3d_point,
+    "humanoid3d-gesture": humanoid3d_gesture,
+    "humanoid3d-touch": humanoid3d_touch,
+    "humanoid3d-nose": humanoid3d_nose,
+}
+"""The 3D tasks by name (`sinews.figures.tasks.TASKS` holds them too)."""

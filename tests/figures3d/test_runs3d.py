@@ -1,0 +1,96 @@
+"""3D GP runs through the CLI: one seed, one run on any executor; a SIGKILLed run resumes bit
+for bit; targets are checked; ``render`` draws a 3D run with MuJoCo's renderer."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from killed_runs import kill_when, stored_generations
+
+pytest.importorskip("mujoco")
+
+from sinews.cli import main
+from sinews.store import Individual, RunStore
+
+OPTIONS: dict[str, Any] = {"task": "hop", "target": "1.0,0.5", "population": 6,
+                           "generations": 5, "seconds": 0.4, "seed": 3}  # fmt: skip
+
+
+def arguments(figure: str = "luxo3d", **changes: Any) -> list[str]:
+    options = {**OPTIONS, **changes}
+    given = [part for key, value in options.items() for part in (f"--{key}", str(value))]
+    return ["evolve", figure, "--controller", "gp", *given]
+
+
+def stored(db: Path) -> tuple[str, list[Individual], list[bytes]]:
+    with RunStore(db) as store:
+        (info,) = store.runs()
+        checkpoints = [store.checkpoint(info.id, g) for g in range(info.generations)]
+        return info.status, store.individuals(info.id), checkpoints
+
+
+@pytest.fixture(scope="module")
+def whole(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    db = tmp_path_factory.mktemp("whole3d") / "runs.db"
+    assert main([*arguments(), "--db", str(db)]) == 0
+    return db
+
+
+def test_a_3d_run_is_stored_with_its_task(whole: Path) -> None:
+    status, individuals, checkpoints = stored(whole)
+    assert (status, len(individuals), len(checkpoints)) == ("finished", 30, 5)
+    with RunStore(whole) as store:
+        (info,) = store.runs()
+    assert info.kind == "gp-luxo3d"
+    assert info.config["task"] == "luxo3d-hop"
+    assert info.config["task_options"]["target"] == [1.0, 0.5]
+
+
+def test_the_same_seed_gives_the_same_3d_run_on_any_executor(whole: Path, tmp_path: Path) -> None:
+    pool = tmp_path / "pool.db"
+    assert main([*arguments(), "--executor", "processes", "--workers", "2", "--db", str(pool)]) == 0
+    assert stored(pool) == stored(whole)
+
+
+def test_a_killed_3d_run_resumes_to_the_uninterrupted_one(whole: Path, tmp_path: Path) -> None:
+    cut = tmp_path / "cut.db"
+    kill_when([*arguments(), "--db", str(cut)], cut, 2)
+    assert 2 <= stored_generations(cut) < 5
+    assert main(["runs", "resume", "1", "--db", str(cut)]) == 0
+    assert stored(cut) == stored(whole)
+
+
+@pytest.mark.parametrize(
+    ("figure", "changes", "message"),
+    [
+        ("luxo3d", {"target": "1.0"}, "X,Y in m"),
+        ("humanoid3d", {"task": "touch", "target": "0.5,1.2"}, "X,Y,Z in m"),
+        ("humanoid3d", {"task": "gesture", "target": "1,2,3"}, "has no --target"),
+        ("humanoid3d", {"task": "hop"}, "choose from point, gesture, touch, nose"),
+    ],
+)
+def test_bad_3d_targets_are_one_line(
+    figure: str, changes: dict[str, Any], message: str, tmp_path: Path, capsys
+) -> None:
+    assert main([*arguments(figure, **changes), "--db", str(tmp_path / "x.db")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert message in err and "\n" not in err
+
+
+def test_render_draws_a_3d_run_with_mujoco(whole: Path, tmp_path: Path) -> None:
+    from sinews.render.mujoco_view import GLBackendError, _context_class, gl_backend
+
+    try:
+        _context_class(gl_backend())
+    except GLBackendError as exc:
+        pytest.skip(str(exc))
+    path = tmp_path / "best.png"
+    assert main(["render", "1", "--best", "-o", str(path), "--size", "320",
+                 "--db", str(whole)]) == 0  # fmt: skip
+    image = np.asarray(Image.open(path))
+    assert image.shape == (180, 320, 3) and image.std() > 10

@@ -1,0 +1,138 @@
+"""The 3D tasks: scenes, terminals, score sanity, determinism across batches and threads."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+pytest.importorskip("mujoco")
+
+from sinews.control import HoldPose
+from sinews.control.gp import ramped_half_and_half
+from sinews.control.springnet import SpringNetController, SpringNetGenome
+from sinews.experiments.gp.settings import GPSettings, Runtime
+from sinews.experiments.gp.simulate import measure_programs
+from sinews.figures import rollout
+from sinews.figures.figure import FigureError
+from sinews.figures.tasks import Task, TaskMeter, make_task
+from sinews.figures.tasks3d import TASKS_3D
+
+
+def _held(task: Task, pose: dict[str, float], seconds: float | None = None) -> np.ndarray:
+    """The task's terms for the figure holding ``pose`` (others neutral)."""
+    figure = task.figure
+    targets = figure.neutral.copy()
+    for joint, angle in pose.items():
+        targets[figure.joints.index(joint)] = angle
+    meter = TaskMeter(task, 1)
+    rollout(figure, HoldPose(targets), 1, seconds or task.seconds, nthread=1, observer=meter)
+    return dict(zip(task.weights, meter.terms()[0], strict=True))
+
+
+@pytest.mark.parametrize("name", list(TASKS_3D))
+def test_every_3d_task_builds_with_4_to_10_driven_joints(name: str) -> None:
+    task = make_task(name)
+    assert task.figure.root == "free"
+    n = len(task.joints)
+    assert (3 if name.startswith("luxo3d") else 4) <= n <= 10
+    weights, _ = task.input_map()
+    assert weights.shape == (task.figure.n_sensors, len(task.terminals))
+
+
+def test_the_lamp_sees_the_goal_in_its_heading_frame() -> None:
+    task = make_task("luxo3d-hop", target=(1.0, 0.5))
+    assert {"f_target", "l_target", "root_vf", "fz_base"} <= set(task.terminals)
+    terms = _held(task, {}, seconds=0.5)
+    assert terms["distance"] == pytest.approx(-math.hypot(1.0, 0.5), abs=0.01)
+    assert terms["fallen"] == 0.0 and terms["head"] == 0.0
+
+
+def test_hop_targets_are_checked() -> None:
+    with pytest.raises(FigureError, match=r"0\.3 to 2 m"):
+        make_task("luxo3d-hop", target=(2.0, 1.0))
+    with pytest.raises(FigureError, match="x,y"):
+        make_task("luxo3d-hop", target=(1.0,))
+
+
+def test_limbo_bar_lies_across_the_path_and_is_sensed() -> None:
+    task = make_task("luxo3d-limbo", target=(0.0, 1.0))
+    model = task.figure.model()
+    pole = model.body("pole")
+    np.testing.assert_allclose(pole.pos[:2], (0.0, 0.5), atol=1e-9)
+    assert "touch" in task.weights and task.figure.touch_bodies == ("pole",)
+
+
+def test_pointing_forward_at_a_point_ahead_scores_a_few_degrees() -> None:
+    task = make_task("humanoid3d-point", target=(2.5, -0.2, 1.445))
+    forward = _held(task, {"shoulder_y_r": -math.pi / 2}, seconds=1.5)
+    resting = _held(task, {}, seconds=1.5)
+    # the servos are compliant: the arm droops and the body leans forward on its ankles
+    assert -forward["distance"] < math.radians(10.0)
+    assert -resting["distance"] == pytest.approx(math.pi / 2, abs=0.15)
+    assert forward["fallen"] == 0.0
+
+
+def test_touch_scores_the_fingertips_distance() -> None:
+    task = make_task("humanoid3d-touch", target=(0.65, -0.2, 1.445))
+    forward = _held(task, {"shoulder_y_r": -math.pi / 2}, seconds=1.5)
+    resting = _held(task, {}, seconds=1.5)
+    assert -forward["distance"] < 0.1  # the arm (0.63 m) points at a point 0.65 m ahead
+    assert -resting["distance"] > 0.6
+
+
+def test_a_wave_at_the_rate_scores_near_zero_and_a_hanging_arm_does_not() -> None:
+    task = make_task("humanoid3d-gesture", rate=1.5, window=1.5, seconds=3.0)
+    figure = task.figure
+    arm = figure.joints.index("shoulder_x_r")
+
+    class Wave:
+        def reset(self, n: int) -> None:
+            self.out = np.tile(figure.neutral, (n, 1))
+
+        def control(self, t: float, sensors: np.ndarray) -> np.ndarray:
+            self.out[:, arm] = -2.6 + 0.35 * math.sin(2 * math.pi * 1.5 * t)
+            return self.out
+
+    meter = TaskMeter(task, 1)
+    rollout(figure, Wave(), 1, task.seconds, nthread=1, observer=meter)
+    waving = dict(zip(task.weights, meter.terms()[0], strict=True))
+    hanging = _held(task, {})
+    raised = _held(task, {"shoulder_x_r": -2.6})  # up and out to the side, held still
+    assert -waving["distance"] < 0.02
+    assert -hanging["distance"] > 0.5  # the hand is 0.6 m below the shoulder
+    # a still hand off to the side is no wave, whatever the window's fraction of a period
+    assert -raised["distance"] == pytest.approx(task.goal.wave.amplitude, abs=0.01)
+
+
+@pytest.mark.parametrize(("name", "seconds"), [("luxo3d-hop", 1.0), ("humanoid3d-nose", 0.5)])
+def test_gp_scores_do_not_depend_on_batch_or_threads(name: str, seconds: float) -> None:
+    settings = GPSettings(name, {}, seconds=seconds)
+    programs = ramped_half_and_half(settings.pset, np.random.default_rng(5), n_programs=10,
+                                    n_trees=len(settings.task.joints), min_depth=2,
+                                    max_depth=5)  # fmt: skip
+    whole = measure_programs(settings, programs, Runtime(nthread=2), record=True)
+    again = measure_programs(settings, programs, Runtime(nthread=2), record=True)
+    part = measure_programs(settings, programs[3:8], Runtime(nthread=1), record=True)
+    np.testing.assert_array_equal(whole.terms, again.terms)
+    np.testing.assert_array_equal(whole.terms[3:8], part.terms)
+    assert whole.result.qpos is not None and part.result.qpos is not None
+    np.testing.assert_array_equal(whole.result.qpos[:, 3:8], part.result.qpos)
+
+
+def test_spring_nets_drive_the_3d_lamp_deterministically() -> None:
+    task = make_task("luxo3d-hop")
+    figure = task.figure
+    genome = SpringNetGenome.random(np.random.default_rng(2), 6, 4)
+
+    def run(rows: list[int]) -> np.ndarray:
+        net = SpringNetController(genome.take(rows), outputs=np.arange(3), gain=1.2,
+                                  offset=figure.neutral)  # fmt: skip
+        result = rollout(figure, net, len(rows), 1.0, record=True, nthread=2)
+        assert result.qpos is not None and not result.failed.any()
+        return result.qpos
+
+    whole = run(list(range(6)))
+    assert np.ptp(whole[:, :, 7:], axis=0).max() > 0.3  # the joints swing
+    np.testing.assert_array_equal(whole[:, 2:4], run([2, 3]))
