@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 import pytest
@@ -52,7 +53,7 @@ def test_the_humanoid_has_at_least_28_dof_and_every_hinge_servoed(person: Figure
 
 
 @pytest.mark.parametrize("build", [luxo3d, humanoid3d])
-def test_3d_figures_rest_on_their_feet_under_a_pd_hold(build) -> None:
+def test_3d_figures_rest_on_their_feet_under_a_pd_hold(build: Callable[[], Figure]) -> None:
     figure = build()
     result = rollout(figure, HoldPose(figure.neutral), 2, 2.0, record=True, nthread=1)
     assert not result.failed.any()

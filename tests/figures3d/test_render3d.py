@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import sys
+from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -23,7 +25,7 @@ from sinews.render.mujoco_view import (
 
 
 @pytest.fixture(scope="module")
-def hop():
+def hop() -> Any:
     task = make_task("luxo3d-hop", target=(1.0, 0.5))
     model = task.figure.model()
     try:
@@ -46,7 +48,7 @@ def _red(image: np.ndarray) -> int:
     return int(((r > 120) & (g < 80) & (b < 80)).sum())
 
 
-def test_a_frame_shows_the_lamp_and_the_x(hop) -> None:
+def test_a_frame_shows_the_lamp_and_the_x(hop: Any) -> None:
     with MujocoView(hop, 320, 180, camera=default_camera(hop, hop.qpos0)) as view:
         image = view.frame(hop.qpos0)
     assert image.shape == (180, 320, 3) and image.dtype == np.uint8
@@ -55,7 +57,7 @@ def test_a_frame_shows_the_lamp_and_the_x(hop) -> None:
     assert _red(image) > 10  # the target's X too
 
 
-def test_the_camera_follows_the_figure(hop) -> None:
+def test_the_camera_follows_the_figure(hop: Any) -> None:
     moved = hop.qpos0.copy()
     moved[:2] = (1.5, -1.0)  # far from where the camera started
     with MujocoView(hop, 320, 180) as view:
@@ -64,7 +66,7 @@ def test_the_camera_follows_the_figure(hop) -> None:
     assert _figure(image) > 60
 
 
-def test_png_strobe_and_mp4_files(hop, tmp_path) -> None:
+def test_png_strobe_and_mp4_files(hop: Any, tmp_path: Path) -> None:
     qpos = np.repeat(hop.qpos0[None], 12, axis=0)
     qpos[:, 0] = np.linspace(0.0, 0.6, 12)
     png = save_png_3d(hop, qpos, tmp_path / "last.png", size=(320, 180))
@@ -76,7 +78,9 @@ def test_png_strobe_and_mp4_files(hop, tmp_path) -> None:
     assert sorted(p.name for p in tmp_path.iterdir()) == ["last.png", "run.mp4", "strobe.png"]
 
 
-def test_a_missing_gl_back_end_is_one_line_naming_the_package(monkeypatch) -> None:
+def test_a_missing_gl_back_end_is_one_line_naming_the_package(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
     monkeypatch.setenv("MUJOCO_GL", "osmesa")
     monkeypatch.setitem(sys.modules, "mujoco.osmesa", None)  # as if libOSMesa could not load
     with pytest.raises(GLBackendError) as info:
@@ -85,7 +89,7 @@ def test_a_missing_gl_back_end_is_one_line_naming_the_package(monkeypatch) -> No
     assert "libosmesa6" in message and "\n" not in message
 
 
-def test_an_unknown_back_end_is_refused(monkeypatch) -> None:
+def test_an_unknown_back_end_is_refused(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setenv("MUJOCO_GL", "vulkan-please")
     with pytest.raises(GLBackendError, match="unknown MUJOCO_GL"):
         mujoco_view._context_class(mujoco_view.gl_backend())

@@ -75,7 +75,11 @@ def test_a_killed_3d_run_resumes_to_the_uninterrupted_one(whole: Path, tmp_path:
     ],
 )
 def test_bad_3d_targets_are_one_line(
-    figure: str, changes: dict[str, Any], message: str, tmp_path: Path, capsys
+    figure: str,
+    changes: dict[str, Any],
+    message: str,
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
 ) -> None:
     assert main([*arguments(figure, **changes), "--db", str(tmp_path / "x.db")]) == 2
     err = capsys.readouterr().err.strip()

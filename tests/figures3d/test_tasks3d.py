@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 import pytest
@@ -20,7 +21,7 @@ from sinews.figures.tasks import Task, TaskMeter, make_task
 from sinews.figures.tasks3d import TASKS_3D
 
 
-def _held(task: Task, pose: dict[str, float], seconds: float | None = None) -> np.ndarray:
+def _held(task: Task, pose: dict[str, float], seconds: float | None = None) -> dict[str, Any]:
     """The task's terms for the figure holding ``pose`` (others neutral)."""
     figure = task.figure
     targets = figure.neutral.copy()
@@ -103,6 +104,7 @@ def test_a_wave_at_the_rate_scores_near_zero_and_a_hanging_arm_does_not() -> Non
     assert -waving["distance"] < 0.02
     assert -hanging["distance"] > 0.5  # the hand is 0.6 m below the shoulder
     # a still hand off to the side is no wave, whatever the window's fraction of a period
+    assert task.goal.wave is not None
     assert -raised["distance"] == pytest.approx(task.goal.wave.amplitude, abs=0.01)
 
 
