@@ -171,8 +171,11 @@ def main() -> None:
         "mean_align": float(np.mean([r["align"] for r in rows])),
         "mean_smooth": float(np.mean([r["smooth"] for r in rows])),
         "frames_ok": float(np.mean(oks)),
-        "dancer_ok_min_p5_p50": [float(np.min(oks)), float(np.percentile(oks, 5)),
-                                 float(np.median(oks))],  # fmt: skip
+        "dancer_ok_min_p5_p50": [
+            float(np.min(oks)),
+            float(np.percentile(oks, 5)),
+            float(np.median(oks)),
+        ],
         "failed": int(sum(r["failed"] for r in rows)),
         "seconds": time.perf_counter() - start,
     }

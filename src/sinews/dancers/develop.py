@@ -178,7 +178,10 @@ def develop(genome: DancerGenome, *, x: float = 0.0, n_bands: int = DEFAULT_BAND
         actuator_kind=np.array([SPECIES[r.species] for r in slots], dtype=np.int64),
         actuator_channels=np.array([r.bands for r in slots], dtype=np.int64).reshape(-1, 2),
         actuator_strength=np.array(
-            [r.strength * (mass[r.node] / RESPONDER_MASS_REF) ** RESPONDER_MASS_POWER for r in slots]
+            [
+                r.strength * (mass[r.node] / RESPONDER_MASS_REF) ** RESPONDER_MASS_POWER
+                for r in slots
+            ]
         ),
         actuator_custom=np.array([r.custom for r in slots]),
     )

@@ -107,9 +107,7 @@ def beat_align_score(
     return _align(kinematic_beats(positions, fps), len(positions), fps, beats)
 
 
-def _align(
-    pauses: npt.NDArray[np.int64], n_frames: int, fps: float, beats: npt.ArrayLike
-) -> float:
+def _align(pauses: npt.NDArray[np.int64], n_frames: int, fps: float, beats: npt.ArrayLike) -> float:
     """Beat Align Score of kinematic beats ``pauses`` (frames) against ``beats`` (seconds)."""
     beat_frames = np.asarray(beats, dtype=np.float64) * fps
     beat_frames = beat_frames[(beat_frames >= 0) & (beat_frames <= n_frames - 1)]

@@ -8,9 +8,11 @@ fitness.
 
 | term | what it rewards | range |
 |---|---|---|
-| ``beat-lift`` | the pauses fall on the beats, not just often: beat-align with the beats minus its mean over 16 phase shifts of them (the default main goal) | −1 … 1, 0 = ignores the beat |
-| ``smoothness`` | moves at the beat's scale, not a snap: share of motion energy below 4 Hz | 0 … 1 |
-| ``beat-align`` | the body's pauses fall on the beats (AIST++ Beat Align Score); dense jitter games it, so it is no longer a default term | 0 … 1 |
+| ``beat-lift`` | pauses on the beats, not just often: beat-align minus its mean | −1 … 1 |
+|  | over 16 phase shifts of the beats (default main goal; 0 = ignores the beat) | |
+| ``smoothness`` | moves at the beat's scale: share of motion energy below 4 Hz | 0 … 1 |
+| ``beat-align`` | pauses fall on the beats (AIST++ Beat Align Score); dense jitter | 0 … 1 |
+|  | games it, so it is no longer a default term | |
 | ``liveliness`` | motion energy: mean node speed from frame to frame | m/s, ≥ 0 |
 | ``humanoid`` | staying humanoid: minus (mean spring strain + fraction of frames collapsed) | ≤ 0 |
 | ``on-stage`` | staying near home: minus the mean sideways distance from the start | m, ≤ 0 |
