@@ -5,6 +5,8 @@ Each node has two responder slots of five genes: species bucket (the lowest
 one custom value. A responder listens to the contiguous band range its pitch
 and width select and, when that band's trigger fires, applies its species'
 force to its node, scaled by its strength and the band's decaying activation.
+With beats, moves happen on the beat grid (`beat_drive`): a band that fired near a beat
+moves on that beat, and sway and shake follow a two-beat phase (docs/dancing.md).
 Each species is an engine actuator (`sinews.springmass.actuators`); how the
 force shows depends on the node it sits on: a heavy head on stiff springs
 barely nods where a light hand on soft springs flies.
@@ -54,7 +56,8 @@ NONE_BELOW = 0.55
 """Species genes below this mean the slot is empty (about 15 of 34 slots are filled)."""
 
 REACTION_FRAMES = 4
-"""Frames (at 60 fps: 67 ms) between a band's trigger and its responders' move.
+"""Frames (at 60 fps: 67 ms) between a band's trigger and its responders' move, for a
+song without beats (with beats, moves follow the beat grid: `beat_drive`).
 
 Like a dancer's reaction to a sound it hears (dancer.js itself answered one
 1024-sample block, 23 ms, late). Measured: with no delay the body's pauses come
