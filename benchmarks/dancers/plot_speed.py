@@ -53,7 +53,8 @@ def main() -> None:
         pauses = kinematic_beats(traj.positions, traj.fps)
         pauses = pauses[window[pauses]]
         ax.plot(t[pauses], speed[pauses], "o", color="tab:red", ms=4, label="pauses")
-        for k, beat in enumerate(reference[(reference >= args.start) & (reference <= t[window][-1])]):
+        end = t[window][-1]
+        for k, beat in enumerate(reference[(reference >= args.start) & (reference <= end)]):
             ax.axvline(beat, color="tab:blue", lw=1.0, label="reference beats" if k == 0 else None)
         if traj.beats is not None:
             ours = traj.beats[(traj.beats >= args.start) & (traj.beats <= t[window][-1])]
