@@ -55,11 +55,20 @@ def test_sway_follows_the_phase_and_shake_oscillates() -> None:
     on_beat = first_velocity(body, np.ones((1, 1)), phase=np.array([0.0]))
     half = first_velocity(body, np.ones((1, 1)), phase=np.array([0.5]))
     assert on_beat[0] == pytest.approx(1.0) and half[0] == pytest.approx(-1.0)
-    shaker = BodyBatch.from_bodies([one_node(ActuatorKind.SHAKE, 0.0)])  # 3 Hz
-    _, rec = simulate(shaker, shaker.initial_state(), 100, FREE, drive=np.ones((100, 1)))
+    mirrored = first_velocity(one_node(ActuatorKind.SWAY, 0.7), np.ones((1, 1)), phase=np.zeros(1))
+    assert mirrored[0] == pytest.approx(-1.0)
+    # shake: two cycles per phase cycle (dancers: one per beat), sideways for custom 0
+    phase = np.arange(120) / 120.0
+    shaker = BodyBatch.from_bodies([one_node(ActuatorKind.SHAKE, 0.0)])
+    _, rec = simulate(
+        shaker, shaker.initial_state(), 120, FREE, drive=np.ones((120, 1)), phase=phase
+    )
     assert rec is not None
     x = rec.positions[:, 0, 0, 0]
-    assert np.ptp(x) > 0 and np.sum(np.diff(np.sign(np.diff(x))) != 0) >= 4  # back and forth
+    turns = np.sum(np.diff(np.sign(np.diff(x))) != 0)
+    assert np.ptp(x) > 0 and turns >= 3  # back and forth, twice
+    upright = first_velocity(one_node(ActuatorKind.SHAKE, 1.0), np.ones((1, 1)), phase=np.zeros(1))
+    assert upright[0] == pytest.approx(0.0, abs=1e-9) and upright[1] == pytest.approx(1.0)
 
 
 def test_pulse_pushes_neighbours_away_and_conserves_momentum() -> None:

@@ -14,7 +14,9 @@ from sinews.music import (
     DEMO_NAMES,
     analyse_file,
     beat_align_score,
+    beat_lift,
     kinematic_beats,
+    smoothness,
     write_demo,
 )
 from sinews.music.analysis import MAX_BPM, MIN_BPM
@@ -69,18 +71,25 @@ def score(
     ] = None,
     bpm: Bpm = None,
 ) -> None:
-    """Print the beat-align score of a motion: how well its pauses fall on the beats (0–1)."""
+    """Print how well a motion follows the beats: beat lift, smoothness and beat-align.
+
+    Beat lift is beat-align with the beats minus its mean over 16 phase shifts of
+    them (0: ignores the beat, however often it pauses); smoothness is the share of
+    the motion's energy below 4 Hz (docs/dancing.md).
+    """
     traj = Trajectory.load(trajectory)
     beats = traj.beats if song is None else analyse_file(song_path(song), bpm=bpm).beats
     if beats is None:
         raise TrajectoryError(f"{trajectory}: no beats saved in the file; pass --song SONG")
     value = beat_align_score(traj.positions, traj.fps, beats)
+    lift = beat_lift(traj.positions, traj.fps, beats)
+    smooth = smoothness(traj.positions, traj.fps)
     duration = (len(traj.positions) - 1) / traj.fps
     heard = np.count_nonzero((np.asarray(beats) >= 0) & (np.asarray(beats) <= duration))
     pauses = len(kinematic_beats(traj.positions, traj.fps))
     typer.echo(
-        f"beat-align score {value:.3f} ({heard} music beats and {pauses} kinematic beats "
-        f"in the {duration:.1f} s motion)"
+        f"beat lift {lift:.3f}, smoothness {smooth:.3f}, beat-align score {value:.3f} "
+        f"({heard} music beats and {pauses} kinematic beats in the {duration:.1f} s motion)"
     )
 
 

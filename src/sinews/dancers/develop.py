@@ -25,7 +25,9 @@ from sinews.springmass import Body, EngineParams
 
 __all__ = ["DANCER_ENGINE", "develop"]
 
-DANCER_ENGINE = EngineParams(dt=1.0 / 60.0, home_follow=(0.97, 0.0), friction=0.35)
+DANCER_ENGINE = EngineParams(
+    dt=1.0 / 60.0, home_follow=(0.97, 0.0), friction=0.35, wiggle_seeded_phase=True
+)
 """Engine settings dancers are tuned for: home follows the body sideways (it can
 travel) but holds it up against gravity (it stays standing)."""
 
@@ -39,6 +41,21 @@ _BASE_RADIUS = {
 }  # fmt: skip
 _OMEGA = {EdgeKind.BONE: 1.0, EdgeKind.TORSO: 0.8, EdgeKind.BRACE: 0.45}
 """Relative natural frequency of each kind of spring."""
+
+_STIFFNESS_OMEGA = (5.0, 17.0)
+"""Natural frequency (rad/s) of a bone at stiffness genes 0 and 1."""
+_HOME_OMEGA = (10.0, 18.0)
+"""Natural frequency (rad/s) of the home pull at groundedness genes 0 and 1."""
+_DRAG = (0.06, 0.15)
+"""Velocity lost per frame at drag genes 0 and 1 (was 0.01–0.08: a move rang on for
+beats; now it settles before the next beat)."""
+_WIGGLE = (0.0, 1.5)
+"""Wiggle acceleration (m/s²) at jitter genes 0 and 1."""
+RESPONDER_MASS_POWER = 0.5
+"""A responder's force grows as (node mass / `RESPONDER_MASS_REF` kg) to this power: a
+heavy node gets more newtons but still less acceleration than a light one, so the
+pelvis and chest sway and bounce visibly while a hand still flies further."""
+RESPONDER_MASS_REF = 1.0
 
 
 def _part(name: str) -> str:
@@ -133,15 +150,15 @@ def develop(genome: DancerGenome, *, x: float = 0.0, n_bands: int = DEFAULT_BAND
     edge_genes = genome.edges
     geometric = np.linalg.norm(rest[edges[:, 1]] - rest[edges[:, 0]], axis=1)
     rest_length = geometric * _lerp(0.88, 1.12, edge_genes[:, 0])
-    omega = float(_lerp(5.0, 17.0, g["stiffness"]))
+    omega = float(_lerp(*_STIFFNESS_OMEGA, g["stiffness"]))
     kind_omega = np.array([_OMEGA[edge_kind(name)] for name in EDGE_NAMES]) * omega
     m_i, m_j = mass[edges[:, 0]], mass[edges[:, 1]]
     reduced = m_i * m_j / (m_i + m_j)
     strength = reduced * kind_omega**2 * _lerp(0.5, 1.5, edge_genes[:, 1])
     easing = _lerp(0.0, 0.25, edge_genes[:, 2])
 
-    home = mass * float(_lerp(10.0, 18.0, g["groundedness"])) ** 2
-    wiggle = mass * float(_lerp(0.0, 3.0, g["jitter"]))
+    home = mass * float(_lerp(*_HOME_OMEGA, g["groundedness"])) ** 2
+    wiggle = mass * float(_lerp(*_WIGGLE, g["jitter"]))
     slots = responders(genome, n_bands)
     return Body(
         names=NODES,
@@ -155,11 +172,16 @@ def develop(genome: DancerGenome, *, x: float = 0.0, n_bands: int = DEFAULT_BAND
         easing=easing,
         home=home,
         wiggle=wiggle,
-        drag=float(_lerp(0.01, 0.08, g["drag"])),
+        drag=float(_lerp(*_DRAG, g["drag"])),
         colors=_colors(g, node_genes),
         actuator_node=np.array([r.node for r in slots], dtype=np.int64),
         actuator_kind=np.array([SPECIES[r.species] for r in slots], dtype=np.int64),
         actuator_channels=np.array([r.bands for r in slots], dtype=np.int64).reshape(-1, 2),
-        actuator_strength=np.array([r.strength for r in slots]),
+        actuator_strength=np.array(
+            [
+                r.strength * (mass[r.node] / RESPONDER_MASS_REF) ** RESPONDER_MASS_POWER
+                for r in slots
+            ]
+        ),
         actuator_custom=np.array([r.custom for r in slots]),
     )

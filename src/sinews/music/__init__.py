@@ -14,7 +14,7 @@ Typical use::
 from __future__ import annotations
 
 from sinews.music.analysis import analyse, analyse_file, default_cache_dir
-from sinews.music.beat_align import beat_align_score, kinematic_beats
+from sinews.music.beat_align import beat_align_score, beat_lift, kinematic_beats, smoothness
 from sinews.music.classic import classic_kick_frames, classic_kicks, classic_spectra
 from sinews.music.decode import MAX_SECONDS, MIN_SECONDS, Audio, load_audio, save_wav
 from sinews.music.demo import DEFAULT_DEMO, DEMO_NAMES, DemoSong, demo_song, write_demo
@@ -36,6 +36,7 @@ __all__ = [
     "analyse_file",
     "band_for_pitch",
     "beat_align_score",
+    "beat_lift",
     "classic_kick_frames",
     "classic_kicks",
     "classic_spectra",
@@ -44,5 +45,6 @@ __all__ = [
     "kinematic_beats",
     "load_audio",
     "save_wav",
+    "smoothness",
     "write_demo",
 ]

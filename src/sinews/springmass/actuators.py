@@ -14,8 +14,14 @@ Kinds (``a`` = drive, ``s`` = strength in newtons, ``c`` = custom in [0, 1],
   then up: an anticipating squash-and-jump.
 - SPIN: ``s a`` perpendicular to ``r``, clockwise for ``c < 0.5``.
 - REACH: ``s a`` outward along ``r``, bent toward straight up by ``c``.
-- SHAKE: ``s a sin(2 pi f t)`` sideways, ``f = 3 + 9 c`` hertz.
-- SWAY: ``s a cos(2 pi (phase + c))`` sideways, locked to the phase signal.
+- SHAKE: ``s a cos(4 pi phase)`` along the angle ``pi c / 2`` (sideways for c = 0,
+  up and down for c = 1): two cycles per cycle of the phase signal.
+- SWAY: ``s a cos(2 pi phase)`` sideways (mirrored for ``c >= 0.5``), one cycle per
+  cycle of the phase signal.
+
+Dancers feed a phase signal that runs once per two beats (`sinews.dancers.responders`),
+so a sway goes left on one beat and right on the next and a shake turns on every
+beat: their force peaks, and so the body's turning points, fall on the beats.
 - PULSE: pushes every neighbour away along its edge (``c >= 0.5``) or pulls it
   in (``c < 0.5``) with ``s a``, the node taking the reaction: the node's
   springs breathe.
@@ -76,7 +82,10 @@ def actuator_force(kind, drive, strength, custom, rx, ry, t, phase):
         length = np.sqrt(dx * dx + dy * dy) + 1e-9
         return magnitude * dx / length, magnitude * dy / length
     if kind == _SHAKE:
-        return magnitude * np.sin(_TAU * (3.0 + 9.0 * custom) * t), 0.0
+        wave = magnitude * np.cos(2.0 * _TAU * phase)
+        angle = 0.25 * _TAU * custom
+        return wave * np.cos(angle), wave * np.sin(angle)
     if kind == _SWAY:
-        return magnitude * np.cos(_TAU * (phase + custom)), 0.0
+        side = -1.0 if custom >= 0.5 else 1.0
+        return side * magnitude * np.cos(_TAU * phase), 0.0
     return 0.0, 0.0

@@ -40,6 +40,9 @@ class EngineParams:
             (1, 1) keeps only the shape (the body drifts freely), (1, 0) lets a
             dancer travel sideways while home still holds it up.
         wiggle_period: seconds between the knots of the smooth wiggle noise.
+        wiggle_seeded_phase: start each body's knot clock at a point of the period
+            drawn from its seed, so bodies do not share one clock from t = 0 (that
+            a song could line up with by chance). Off by default (scenes).
         max_speed: a node faster than this (m/s) marks its body as runaway.
     """
 
@@ -51,6 +54,7 @@ class EngineParams:
     restitution: float = 0.0
     home_follow: tuple[float, float] = (0.0, 0.0)
     wiggle_period: float = 0.4
+    wiggle_seeded_phase: bool = False
     max_speed: float = 100.0
 
     def __post_init__(self) -> None:

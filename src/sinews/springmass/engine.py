@@ -74,7 +74,7 @@ def simulate(
             (n_steps, P, N, 2) one row per step.
         drive: (D, C) values >= 0 that drive the actuators; row k is read at
             global step k (``state.step`` counts from 0), none after the last row.
-        phase: (D,) phase signal in [0, 1) for SWAY actuators (default zeros).
+        phase: (D,) phase signal in [0, 1) for SWAY and SHAKE actuators (default zeros).
         record: keep the positions every ``record_stride`` steps.
         record_forces: also keep the net force on each node (debug overlay).
         backend: ``"numba"`` (fast) or ``"numpy"`` (the reference).
@@ -109,7 +109,8 @@ def simulate(
         batch.actuator_channels, batch.actuator_strength, batch.actuator_custom,
         drive_table, phase_row, ext, state.step, n_steps,
         params.dt, params.gravity, params.floor, params.floor_y, params.friction,
-        params.restitution, *params.home_follow, params.wiggle_steps, params.max_speed,
+        params.restitution, *params.home_follow, params.wiggle_steps,
+        params.wiggle_seeded_phase, params.max_speed,
         record_stride, rec_pos, rec_force,
     )  # fmt: skip
     new.step = state.step + n_steps

@@ -21,13 +21,22 @@ from numba import njit, prange
 from sinews.springmass.actuators import ActuatorKind, actuator_force
 from sinews.springmass.noise import smoothstep, unit_hash
 
-__all__ = ["ATTRACTION_SOFTNESS", "EDGE_EPSILON", "actuate", "simulate_kernel"]
+__all__ = [
+    "ATTRACTION_SOFTNESS",
+    "EDGE_EPSILON",
+    "WIGGLE_CLOCK_NODE",
+    "actuate",
+    "simulate_kernel",
+]
 
 EDGE_EPSILON = 1e-9
 """Added to every edge length so a collapsed edge never divides by zero."""
 
 ATTRACTION_SOFTNESS = 0.05
 """Metres under which an attraction fades linearly to zero (no jitter at contact)."""
+
+WIGGLE_CLOCK_NODE = 65535
+"""Node number hashed (axis 2, knot 0) with a body's seed for its wiggle clock's start."""
 
 _PULSE = int(ActuatorKind.PULSE)
 _hash = njit(cache=True, inline="always")(unit_hash)
@@ -143,6 +152,7 @@ def simulate_kernel(
     follow_x,
     follow_y,
     wiggle_steps,
+    wiggle_seeded_phase,
     max_speed,
     record_stride,
     rec_pos,
@@ -178,6 +188,9 @@ def simulate_kernel(
             rest_cy += rest[p, i, 1]
         rest_cx /= n
         rest_cy /= n
+        clock = 0
+        if wiggle_seeded_phase:
+            clock = int((_hash(seeds[p], WIGGLE_CLOCK_NODE, 2, 0) + 1.0) * 0.5 * wiggle_steps)
         if n_rec > 0:
             for i in range(n):
                 rec_pos[0, p, i, 0] = pos[p, i, 0]
@@ -201,8 +214,8 @@ def simulate_kernel(
                     off_y += pos[p, i, 1]
                 off_x = follow_x * (off_x / n - rest_cx)
                 off_y = follow_y * (off_y / n - rest_cy)
-            knot = step // wiggle_steps
-            blend = _smooth((step - knot * wiggle_steps) / wiggle_steps)
+            knot = (step + clock) // wiggle_steps
+            blend = _smooth((step + clock - knot * wiggle_steps) / wiggle_steps)
             seed = seeds[p]
             for i in range(n):
                 fx = home[p, i] * (rest[p, i, 0] + off_x - pos[p, i, 0])

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from sinews.springmass.kernels import ATTRACTION_SOFTNESS, EDGE_EPSILON, actuate
+from sinews.springmass.kernels import ATTRACTION_SOFTNESS, EDGE_EPSILON, WIGGLE_CLOCK_NODE, actuate
 from sinews.springmass.noise import smoothstep, unit_hash
 
 __all__ = ["simulate_reference"]
@@ -64,6 +64,7 @@ def simulate_reference(
     follow_x,
     follow_y,
     wiggle_steps,
+    wiggle_seeded_phase,
     max_speed,
     record_stride,
     rec_pos,
@@ -82,6 +83,11 @@ def simulate_reference(
     if rec_pos.shape[0] > 0:
         rec_pos[0] = np.where(real[..., None], pos, rec_pos[0])
     nodes = np.broadcast_to(node_ids, (n_bodies, big_n))
+    clock = np.zeros(n_bodies, dtype=np.int64)
+    if wiggle_seeded_phase:
+        with np.errstate(over="ignore"):
+            start = unit_hash(seeds, WIGGLE_CLOCK_NODE, 2, 0)
+        clock = ((start + 1.0) * 0.5 * wiggle_steps).astype(np.int64)
     for s in range(n_steps):
         alive = (status == 0)[:, None] & real  # (P, N)
         step = start_step + s
@@ -91,8 +97,9 @@ def simulate_reference(
         offset = ((centre - rest_centre) * [follow_x, follow_y])[:, None, :]
         force = home[..., None] * (rest + offset - pos)
         force[..., 1] -= gravity * mass * weight
-        knot = step // wiggle_steps
-        blend = smoothstep((step - knot * wiggle_steps) / wiggle_steps)
+        ticks = (step + clock)[:, None]  # (P, 1)
+        knot = ticks // wiggle_steps
+        blend = smoothstep((ticks - knot * wiggle_steps) / wiggle_steps)
         seed = seeds[:, None]
         for axis in (0, 1):
             with np.errstate(over="ignore"):  # uint64 arithmetic wraps by design

@@ -109,4 +109,6 @@ def test_score_chunk_computes_named_terms_and_flags_failures(
 
 
 def test_every_term_is_registered() -> None:
-    assert set(TERMS) == {"beat-align", "liveliness", "humanoid", "on-stage", "variety"}
+    assert set(TERMS) == {
+        "beat-lift", "smoothness", "beat-align", "liveliness", "humanoid", "on-stage", "variety"
+    }  # fmt: skip

@@ -58,8 +58,9 @@ class DancerKind:
     options = (
         KindOption("song", str, "Song file, or demo:groove / demo:sway (bundled demo songs)."),
         KindOption("seconds", float, "Dance length (default 30 s, or the song if shorter)."),
-        KindOption("fitness", str, "Fitness terms, main goal first, e.g. beat-align,liveliness "
-                   "(of beat-align, liveliness, humanoid, on-stage, variety; higher is better)."),
+        KindOption("fitness", str, "Fitness terms, main goal first, e.g. beat-lift,liveliness "
+                   "(of beat-lift, smoothness, beat-align, liveliness, humanoid, on-stage, "
+                   "variety; higher is better)."),
         KindOption("weights", str, "Term weights, e.g. liveliness=0.2,humanoid=1."),
         KindOption("phase_in", str, "Style weights 0 before START, full from FULL (default "
                    "5:15)."),

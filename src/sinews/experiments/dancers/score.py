@@ -8,7 +8,11 @@ fitness.
 
 | term | what it rewards | range |
 |---|---|---|
-| ``beat-align`` | the body's pauses fall on the beats (AIST++ Beat Align Score) | 0 … 1 |
+| ``beat-lift`` | pauses on the beats, not just often: beat-align minus its mean | −1 … 1 |
+|  | over 16 phase shifts of the beats (default main goal; 0 = ignores the beat) | |
+| ``smoothness`` | moves at the beat's scale: share of motion energy below 4 Hz | 0 … 1 |
+| ``beat-align`` | pauses fall on the beats (AIST++ Beat Align Score); dense jitter | 0 … 1 |
+|  | games it, so it is no longer a default term | |
 | ``liveliness`` | motion energy: mean node speed from frame to frame | m/s, ≥ 0 |
 | ``humanoid`` | staying humanoid: minus (mean spring strain + fraction of frames collapsed) | ≤ 0 |
 | ``on-stage`` | staying near home: minus the mean sideways distance from the start | m, ≤ 0 |
@@ -27,7 +31,7 @@ from sinews.dancers import DancerGenome
 from sinews.evolve import Evaluator, FitnessSpec, chunk_slices
 from sinews.experiments.dancers.simulate import dance
 from sinews.experiments.evolution import Scores
-from sinews.music.beat_align import beat_align_score
+from sinews.music.beat_align import beat_align_score, beat_lift, smoothness
 from sinews.music.features import MusicFeatures
 from sinews.trajectory import Trajectory
 
@@ -38,6 +42,8 @@ __all__ = [
     "DancerContext",
     "DancerScorer",
     "beat_align",
+    "beat_follow_lift",
+    "body_smoothness",
     "humanoid",
     "liveliness",
     "on_stage",
@@ -57,6 +63,18 @@ def beat_align(traj: Trajectory) -> float:
     if traj.beats is None:
         return 0.0
     return beat_align_score(traj.positions, traj.fps, traj.beats)
+
+
+def beat_follow_lift(traj: Trajectory) -> float:
+    """Beat lift (`sinews.music.beat_lift`) of the motion against the music's beats (0 without)."""
+    if traj.beats is None:
+        return 0.0
+    return beat_lift(traj.positions, traj.fps, traj.beats)
+
+
+def body_smoothness(traj: Trajectory) -> float:
+    """`sinews.music.smoothness`: the share of the motion's energy below 4 Hz."""
+    return smoothness(traj.positions, traj.fps)
 
 
 def liveliness(traj: Trajectory) -> float:
@@ -109,6 +127,8 @@ def variety(traj: Trajectory) -> float:
 
 
 TERMS: dict[str, Callable[[Trajectory], float]] = {
+    "beat-lift": beat_follow_lift,
+    "smoothness": body_smoothness,
     "beat-align": beat_align,
     "liveliness": liveliness,
     "humanoid": humanoid,
@@ -118,6 +138,8 @@ TERMS: dict[str, Callable[[Trajectory], float]] = {
 """Every dancer fitness term by name."""
 
 DEFAULT_WEIGHTS: dict[str, float] = {
+    "beat-lift": 1.0,
+    "smoothness": 0.2,
     "beat-align": 1.0,
     "liveliness": 0.1,
     "humanoid": 0.5,

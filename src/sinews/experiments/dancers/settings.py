@@ -31,7 +31,7 @@ DEFAULTS: dict[str, Any] = {
     "population": 16,
     "generations": 20,
     "seed": 0,
-    "fitness": ["beat-align", "liveliness", "humanoid", "on-stage", "variety"],
+    "fitness": ["beat-lift", "smoothness", "liveliness", "humanoid", "on-stage", "variety"],
     "weights": {},
     "phase_in": {"start": 5, "full": 15},
     "strategy": "ga",

@@ -10,7 +10,7 @@ import numpy as np
 import numpy.typing as npt
 
 from sinews.dancers import DANCER_ENGINE, DancerGenome, develop
-from sinews.dancers.responders import delayed
+from sinews.dancers.responders import beat_drive
 from sinews.errors import SinewsError
 from sinews.limits import MAX_SECONDS
 from sinews.music import MusicFeatures
@@ -41,8 +41,9 @@ class DanceSetup:
     Attributes:
         batch: the developed bodies with their wiggle seeds.
         n_steps: engine steps of the whole dance.
-        drive: the music's delayed band activation (frames, bands), or None.
-        phase: the music's delayed beat phase (frames,), or None.
+        drive: the music's band moves on the beat grid (frames, bands), or None
+            (`sinews.dancers.responders.beat_drive`).
+        phase: the music's two-beat phase (frames,), or None.
     """
 
     batch: BodyBatch
@@ -72,11 +73,13 @@ def prepare_dance(
         bodies = [b.without_actuators() for b in bodies]
     if music is not None and music.fps * DANCER_ENGINE.dt != 1.0:
         raise SinewsError(f"the song was analysed at {music.fps:g} fps; dancers step at 60")
+    n_steps = max(1, round(seconds / DANCER_ENGINE.dt))
+    drive, phase = (None, None) if music is None else beat_drive(music)
     return DanceSetup(
         batch=BodyBatch.from_bodies(bodies, seeds=seeds),
-        n_steps=max(1, round(seconds / DANCER_ENGINE.dt)),
-        drive=None if music is None else delayed(music.activation),
-        phase=None if music is None else delayed(music.beat_phase),
+        n_steps=n_steps,
+        drive=drive,
+        phase=phase,
     )
 
 
