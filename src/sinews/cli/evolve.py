@@ -83,9 +83,19 @@ def _kind_options(kinds: list[RunKind]) -> list[inspect.Parameter]:
             if option.help not in helps.setdefault(option.name, []):
                 helps[option.name].append(option.help)
     return [
-        _option(name, Annotated[types[name] | None, typer.Option(help=" ".join(helps[name]))])
+        _option(name, Annotated[types[name] | None, typer.Option(help=_joined(helps[name]))])
         for name in helps
     ]
+
+
+def _joined(helps: list[str]) -> str:
+    """Several kinds' helps of one option as one line: ``"Length (a: 5 s)."`` and
+    ``"Length (b: 1 s)."`` make ``"Length (a: 5 s; b: 1 s)."``; unlike texts are joined."""
+    heads = {text.partition(" (")[0] for text in helps}
+    if len(helps) == 1 or len(heads) != 1 or not all(t.endswith(").") for t in helps):
+        return " ".join(helps)
+    notes = [text.partition(" (")[2].removesuffix(").") for text in helps]
+    return f"{heads.pop()} ({'; '.join(notes)})."
 
 
 def _defaults(kinds: list[RunKind], key: str) -> str:
