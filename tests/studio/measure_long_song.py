@@ -20,8 +20,8 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from sinews.music import save_wav  # noqa: E402
-from studio_helpers import StudioServer  # noqa: E402
+from sinews.music import save_wav
+from studio_helpers import StudioServer
 
 RATE = 22_050
 

@@ -7,7 +7,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from starlette.testclient import TestClient
 
 from sinews.music import save_wav
 from sinews.store import RunStore
@@ -44,9 +43,7 @@ def test_the_cut_is_named_only_when_there_is_one() -> None:
     assert cut_note(150.0, 150.3) is None  # within half a second: the whole song
 
 
-def test_a_song_longer_than_two_minutes_is_danced_whole(
-    runs: StudioRuns, tmp_path: Path
-) -> None:
+def test_a_song_longer_than_two_minutes_is_danced_whole(runs: StudioRuns, tmp_path: Path) -> None:
     path = song(tmp_path / "long.wav", 150.0)
     run = runs.get(runs.create(runs.songs.import_file(path), seed=3))
     assert run.seconds == pytest.approx(150.0, abs=0.01)
