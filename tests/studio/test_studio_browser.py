@@ -10,9 +10,11 @@ from pathlib import Path
 from typing import Any
 
 import imageio_ffmpeg
+import numpy as np
 import pytest
 from playwright.sync_api import expect
 
+from sinews.music import save_wav
 from studio_helpers import DATA, StudioServer
 
 INK = """(selector) => [...document.querySelectorAll(selector)].map((canvas) => {
@@ -318,3 +320,19 @@ def test_tapping_four_times_or_more_sets_the_tempo(page: Any, server: StudioServ
     page.clock.resume()
     expect(page.locator("#tempo-tap")).to_have_text("Tap")
     assert run_on_server(page, run)["bpm"] == tapped
+
+
+def test_a_song_over_six_minutes_is_cut_and_the_page_says_so(
+    page: Any, server: StudioServer, tmp_path: Path, shots: Path
+) -> None:
+    open_studio(page, server.url)
+    expect(page.locator("#cut")).to_be_hidden()  # the demo song is danced whole
+    rate = 8000  # a faint hiss: cheap to write, decode and analyse
+    hiss = 0.01 * np.random.default_rng(2).standard_normal(370 * rate)
+    page.set_input_files("#upload", str(save_wav(tmp_path / "long.wav", hiss, rate)))
+    page.wait_for_function(f"studio.run.song.name === 'long.wav' && {IDLE}", timeout=120_000)
+    expect(page.locator("#cut")).to_have_text("dancing the first 6:00 of 6:10")
+    expect(page.locator("#time")).to_have_text(re.compile(r"/ 6:00$"))
+    page.screenshot(
+        path=shots / "long-song.png", clip={"x": 0, "y": 0, "width": 1600, "height": 120}
+    )
