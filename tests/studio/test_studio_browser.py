@@ -5,13 +5,16 @@ from __future__ import annotations
 import json
 import re
 import subprocess
+from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
 import imageio_ffmpeg
+import numpy as np
 import pytest
 from playwright.sync_api import expect
 
+from sinews.music import save_wav
 from studio_helpers import DATA, StudioServer
 
 INK = """(selector) => [...document.querySelectorAll(selector)].map((canvas) => {
@@ -260,3 +263,76 @@ def test_breeding_stages_a_child_and_a_reload_comes_back_to_it(
     page.reload()
     page.wait_for_function("window.studio && studio.generation && studio.stage.pack")
     assert page.evaluate("[studio.run.id, studio.generationNumber]") == [run, 1]
+
+
+def run_on_server(page: Any, run: int) -> dict[str, Any]:
+    """The run as the server has it now (not as the page remembers it)."""
+    answer: dict[str, Any] = page.evaluate(f"fetch('/api/runs/{run}').then((r) => r.json())")
+    return answer
+
+
+def pause(page: Any) -> None:
+    """Stop the page's (installed) clock a second from its now."""
+    now = page.evaluate("Date.now()") / 1000
+    page.clock.pause_at(datetime.fromtimestamp(now + 1.0, tz=UTC))
+
+
+def test_a_typed_tempo_is_the_runs(page: Any, server: StudioServer) -> None:
+    open_studio(page, server.url)
+    fresh_run(page)
+    run = page.evaluate("studio.run.id")
+    page.fill("#tempo-bpm", "97.5")
+    page.press("#tempo-bpm", "Enter")
+    page.wait_for_function(f"studio.run.bpm === 97.5 && {IDLE}")
+    changed = run_on_server(page, run)
+    assert changed["bpm"] == 97.5 and changed["tempo"] == pytest.approx(97.5)
+    expect(page.locator("#tempo")).to_have_text("97.5 BPM (set)")
+    page.fill("#tempo-bpm", "300")  # outside 40–240: refused by the page, the run keeps 97.5
+    page.press("#tempo-bpm", "Enter")
+    expect(page.locator("#message.error")).to_contain_text("40–240 BPM")
+    assert run_on_server(page, run)["bpm"] == 97.5
+
+
+def test_tapping_four_times_or_more_sets_the_tempo(page: Any, server: StudioServer) -> None:
+    page.clock.install()
+    open_studio(page, server.url)
+    fresh_run(page)
+    run = page.evaluate("studio.run.id")
+    pause(page)  # the page's timers now wait for the test
+    for tap in range(6):
+        if tap:
+            page.clock.run_for(500 if tap != 3 else 520)  # 120 BPM, one tap a little late
+        page.dispatch_event("#tempo-tap", "click")
+    expect(page.locator("#tempo-tap")).to_have_text("Tap 6 · 120.0")  # the median interval
+    page.clock.run_for(2100)  # two seconds without a tap: the series ends and is sent
+    page.clock.resume()
+    page.wait_for_function(f"studio.run.bpm !== null && {IDLE}")
+    tapped = run_on_server(page, run)["bpm"]
+    assert tapped == pytest.approx(120.0, abs=0.5)
+    expect(page.locator("#tempo-tap")).to_have_text("Tap")
+    # a pause over two seconds starts a new series: three taps are not enough for a tempo
+    pause(page)
+    for tap in range(3):
+        page.clock.run_for(2500 if tap == 0 else 400)
+        page.dispatch_event("#tempo-tap", "click")
+    expect(page.locator("#tempo-tap")).to_have_text("Tap 3")
+    page.clock.run_for(2100)
+    page.clock.resume()
+    expect(page.locator("#tempo-tap")).to_have_text("Tap")
+    assert run_on_server(page, run)["bpm"] == tapped
+
+
+def test_a_song_over_six_minutes_is_cut_and_the_page_says_so(
+    page: Any, server: StudioServer, tmp_path: Path, shots: Path
+) -> None:
+    open_studio(page, server.url)
+    expect(page.locator("#cut")).to_be_hidden()  # the demo song is danced whole
+    rate = 8000  # a faint hiss: cheap to write, decode and analyse
+    hiss = 0.01 * np.random.default_rng(2).standard_normal(370 * rate)
+    page.set_input_files("#upload", str(save_wav(tmp_path / "long.wav", hiss, rate)))
+    page.wait_for_function(f"studio.run.song.name === 'long.wav' && {IDLE}", timeout=120_000)
+    expect(page.locator("#cut")).to_have_text("dancing the first 6:00 of 6:10")
+    expect(page.locator("#time")).to_have_text(re.compile(r"/ 6:00$"))
+    page.screenshot(
+        path=shots / "long-song.png", clip={"x": 0, "y": 0, "width": 1600, "height": 120}
+    )

@@ -30,7 +30,7 @@ from sinews.studio.exports import (
 from sinews.studio.live_socket import live
 from sinews.studio.motion import SLIDER_GENES
 from sinews.studio.pack import MEDIA_TYPE
-from sinews.studio.runs import MAX_MUTATION, StudioRun
+from sinews.studio.runs import MAX_MUTATION, StudioRun, cut_note
 from sinews.studio.service import Studio, Worker
 from sinews.studio.songs import Song
 from sinews.studio.validate import (
@@ -70,6 +70,7 @@ def _run_json(studio: Studio, run: StudioRun) -> dict[str, Any]:
         "tempo": music.tempo_bpm,
         "duration": music.duration,
         "seconds": run.seconds,
+        "cut": cut_note(run.seconds, music.duration),
         "population": run.population,
         "last": run.last,
         "branchOf": run.branch_of,

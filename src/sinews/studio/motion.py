@@ -35,6 +35,9 @@ SLIDER_GENES = ("stiffness", "bulkiness", "lankiness", "torso_triangularity")
 
 T = TypeVar("T")
 
+GENERATIONS_KEPT = 96 * 2**20
+"""Bytes of generation packs kept for the page (three six-minute generations of 20)."""
+
 
 @dataclass(frozen=True, eq=False)
 class StageDancer:
@@ -67,11 +70,21 @@ class StageDancer:
 
 
 class _Recent:
-    """The last few results by key (a tiny LRU cache)."""
+    """The last few results by key (a tiny LRU cache).
 
-    def __init__(self, size: int) -> None:
+    Args:
+        size: most results kept.
+        budget: most bytes kept, counting results that are `bytes` (the newest
+            is always kept).
+    """
+
+    def __init__(self, size: int, budget: int | None = None) -> None:
         self.size = size
+        self.budget = budget
         self._items: OrderedDict[Any, Any] = OrderedDict()
+
+    def _bytes(self) -> int:
+        return sum(len(v) for v in self._items.values() if isinstance(v, bytes))
 
     def get(self, key: Any, make: Callable[[], T]) -> T:
         if key in self._items:
@@ -79,7 +92,9 @@ class _Recent:
             return self._items[key]
         value = make()
         self._items[key] = value
-        while len(self._items) > self.size:
+        while len(self._items) > self.size or (
+            self.budget is not None and len(self._items) > 1 and self._bytes() > self.budget
+        ):
             self._items.popitem(last=False)
         return value
 
@@ -93,7 +108,7 @@ class Motion:
 
     def __init__(self, runs: StudioRuns) -> None:
         self.runs = runs
-        self._generations = _Recent(6)
+        self._generations = _Recent(6, GENERATIONS_KEPT)
         self._stage = _Recent(4)
 
     def generation(self, run_id: int, generation: int) -> bytes:
@@ -114,7 +129,8 @@ class Motion:
 
     def _generation(self, run_id: int, generation: int) -> bytes:
         people, trajs = self.dance_generation(run_id, generation)
-        positions = np.stack([t.positions for t in trajs])
+        # int16 one dancer at a time: a float copy of a six-minute generation is 110 MB
+        positions = np.stack([millimetres(t.positions) for t in trajs])
         strategy = restore_strategy(self.runs.store.checkpoint(run_id, generation))
         assert isinstance(strategy, Strategy)  # dancers breed with float strategies
         header = {
@@ -127,7 +143,7 @@ class Motion:
             "names": list(trajs[0].node_names),
             "dancers": [_dancer_header(p, t) for p, t in zip(people, trajs, strict=True)],
         }
-        return encode_pack(header, {"positions": millimetres(positions)})
+        return encode_pack(header, {"positions": positions})
 
     def stage_dancer(self, individual_id: int, genes: Mapping[str, float]) -> StageDancer:
         """A stored dancer with some of `SLIDER_GENES` changed."""

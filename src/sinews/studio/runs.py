@@ -38,6 +38,8 @@ __all__ = [
     "StudioError",
     "StudioRun",
     "StudioRuns",
+    "clock",
+    "cut_note",
 ]
 
 STRATEGY = "interactive"
@@ -45,8 +47,9 @@ PICKING = ("interactive", "hybrid")
 """Strategies that take a person's picks: the runs the studio can open."""
 OPEN_ENDED = 100_000
 """The generation count a studio run is given: it ends when the person stops."""
-MAX_SECONDS = 120.0
-"""Longest dance the studio simulates; a longer song loops over its first two minutes."""
+MAX_SECONDS = 360.0
+"""Longest dance the studio simulates: a song is danced whole up to six minutes; a
+longer one is cut there, and the page says so (`cut_note`)."""
 POPULATIONS = range(12, 21)
 """Dancers per generation the studio offers for new runs."""
 MAX_SHOWN = 25
@@ -232,6 +235,28 @@ class StudioRuns:
 def _seconds(song: Song) -> float:
     """How long the studio dances to ``song``: all of it, up to `MAX_SECONDS`."""
     return min(MAX_SECONDS, analyse_file(song.path).duration)
+
+
+def clock(seconds: float) -> str:
+    """``seconds`` as the page's player shows it: ``m:ss``, rounded down."""
+    whole = max(0, int(seconds))
+    return f"{whole // 60}:{whole % 60:02d}"
+
+
+def cut_note(seconds: float, duration: float) -> str | None:
+    """What the page says when a run dances only part of its song, else None.
+
+    Args:
+        seconds: the run's dance length.
+        duration: the song's length.
+
+    Returns:
+        For example ``"dancing the first 6:00 of 7:42"``; None when the dance
+        covers the song (to within half a second).
+    """
+    if duration - seconds < 0.5:
+        return None
+    return f"dancing the first {clock(seconds)} of {clock(duration)}"
 
 
 def _picks(info: RunInfo) -> bool:

@@ -6,7 +6,7 @@
 // suspends the AudioContext, which stops its clock; seeking restarts the
 // song at a new offset and moves start. So whatever the song does, every
 // dancer is at the frame of the sound being played. The song loops over the
-// danced part (runs dance at most two minutes).
+// danced part (runs dance at most six minutes; the page says when a song is cut).
 
 export class SongClock {
   constructor() {

@@ -30,7 +30,8 @@ class Studio {
     this.lineage = new Lineage($("lineage"), (person) => this.goTo(person));
     this.songs = new Songs(
       { select: $("song"), upload: $("upload"), tempo: $("tempo"), half: $("tempo-half"),
-        double: $("tempo-double"), auto: $("tempo-auto") },
+        double: $("tempo-double"), auto: $("tempo-auto"), form: $("tempo-form"),
+        bpm: $("tempo-bpm"), tap: $("tempo-tap") },
       this,
     );
     this.run = null;
@@ -133,6 +134,8 @@ class Studio {
     const songChanged = !this.run || this.run.song.id !== run.song.id || !this.clock.buffer;
     this.run = run;
     this.songs.showRun(run);
+    $("cut").textContent = run.cut || "";
+    $("cut").hidden = !run.cut;
     const offset = songChanged ? 0 : this.clock.time();
     await this.clock.load(run.song.id, `/api/runs/${run.id}/audio`, run.seconds, offset);
     await this.refreshRuns();

@@ -2,10 +2,14 @@
 // Another song means dancing on in a new run (a branch); the tempo is the run's.
 
 import { getJSON, postFile, postJSON, StudioError } from "./api.js";
+import { TapTempo } from "./tap.js";
+
+export const MIN_BPM = 40;
+export const MAX_BPM = 240;
 
 export class Songs {
   /**
-   * @param {object} elements {select, upload, tempo, half, double, auto}
+   * @param {object} elements {select, upload, tempo, half, double, auto, form, bpm, tap}
    * @param {object} app {run, maxUpload, busy(label, work), openRun(run), message(text)}
    */
   constructor(elements, app) {
@@ -16,6 +20,15 @@ export class Songs {
     elements.half.addEventListener("click", () => this.retempo(0.5));
     elements.double.addEventListener("click", () => this.retempo(2));
     elements.auto.addEventListener("click", () => this.retempo(null));
+    elements.form.addEventListener("submit", (event) => {
+      event.preventDefault();
+      this.setTempo(Number(elements.bpm.value));
+    });
+    this.tapper = new TapTempo(
+      (bpm) => this.setTempo(Math.round(bpm * 10) / 10),
+      (taps, bpm) => this.showTaps(taps, bpm),
+    );
+    elements.tap.addEventListener("click", () => this.tapper.tap());
   }
 
   /** Fill the song list (and select the run's song). */
@@ -45,6 +58,7 @@ export class Songs {
     }
     select.value = run.song.id;
     tempo.textContent = `${run.tempo.toFixed(1)} BPM${run.bpm ? " (set)" : ""}`;
+    if (document.activeElement !== this.elements.bpm) this.elements.bpm.value = run.tempo.toFixed(1);
   }
 
   /** Dance on to another song from the generation on show. */
@@ -77,8 +91,24 @@ export class Songs {
 
   /** Multiply the tempo by ``factor`` (null: back to the analysed tempo). */
   async retempo(factor) {
+    await this.setTempo(factor === null ? null : this.app.run.tempo * factor, false);
+  }
+
+  /** Show the tap count and the tempo tapped so far on the tap button. */
+  showTaps(taps, bpm) {
+    const { tap, bpm: field } = this.elements;
+    tap.textContent = taps === 0 ? "Tap" : `Tap ${taps}${bpm ? ` · ${bpm.toFixed(1)}` : ""}`;
+    if (bpm) field.value = bpm.toFixed(1);
+  }
+
+  /** Dance at ``bpm`` (null: the analysed tempo); typed and tapped ones must be 40–240. */
+  async setTempo(bpm, checked = true) {
     const run = this.app.run;
-    const bpm = factor === null ? null : run.tempo * factor;
+    if (checked && !(Number.isFinite(bpm) && bpm >= MIN_BPM && bpm <= MAX_BPM)) {
+      this.app.message(`The tempo must be ${MIN_BPM}–${MAX_BPM} BPM.`, true);
+      this.showRun(run);
+      return;
+    }
     await this.app.busy("Re-analysing the beats…", async () => {
       const changed = await postJSON(`/api/runs/${run.id}/bpm`, { bpm });
       await this.app.openRun(changed, this.app.generationNumber);
