@@ -1,6 +1,6 @@
 """Measure a studio server making a 6-minute generation pack (BENCHMARKS.md, "Studio: whole songs").
 
-Run: ``python tests/studio/measure_long_song.py [--population 20] [--seconds 360]``.
+Run: ``python benchmarks/studio/long_song.py [--population 20] [--seconds 360]``.
 Starts ``sinews studio`` in a subprocess on a generated song (clicks at
 120 BPM over quiet noise), fetches the first generation's pack and prints its
 size, the time to make it and the server's peak resident memory (VmHWM).
