@@ -226,3 +226,45 @@ def test_default_location_follows_the_data_dir(monkeypatch: pytest.MonkeyPatch,
                                                 tmp_path: Path) -> None:  # fmt: skip
     monkeypatch.setenv("XDG_DATA_HOME", str(tmp_path))
     assert default_db_path() == tmp_path / "sinews" / "sinews.db"
+
+
+def test_a_branch_copies_generations_lineage_and_checkpoints_in_one_go(store: RunStore) -> None:
+    run = new_run(store)
+    rng = np.random.default_rng(5)
+    store.add_generation(run, record(0, rng))
+    store.add_generation(run, record(1, rng), picks=[1, 2])
+    store.add_generation(run, record(2, rng), picks=[0])
+    branch = store.branch(run, 1, config={"generations": 3, "branch_of": [run, 1]})
+    assert store.run(branch).generations == 2 and store.run(branch).config["branch_of"] == [run, 1]
+    for generation in (0, 1):
+        ours, theirs = store.individuals(run, generation), store.individuals(branch, generation)
+        assert store.checkpoint(branch, generation) == store.checkpoint(run, generation)
+        index_of = {p.id: p.index for p in store.individuals(run)}
+        copy_of = {p.id: p.index for p in store.individuals(branch)}
+        for a, b in zip(ours, theirs, strict=True):
+            np.testing.assert_array_equal(a.genome, b.genome)
+            assert (a.seed, a.fitness, a.terms, a.failed) == (b.seed, b.fitness, b.terms, b.failed)
+            assert [index_of[p] for p in a.parents] == [copy_of[p] for p in b.parents]
+            assert all(p in copy_of for p in b.parents)  # the copies' parents are copies
+    # picks that bred a copied generation are copied; those made in the last copy are not
+    assert [p.picked for p in store.individuals(branch, 0)] == [False, True, True, False]
+    assert not any(p.picked for p in store.individuals(branch, 1))
+    with pytest.raises(StoreError, match="no generation 3"):
+        store.branch(run, 3, config={})
+
+
+def test_a_branch_that_fails_midway_leaves_no_run_behind(store: RunStore) -> None:
+    run = new_run(store)
+    rng = np.random.default_rng(6)
+    store.add_generation(run, record(0, rng))
+    store.add_generation(run, record(1, rng))
+    before = (len(store.runs()), len(store.individuals(run)))
+    # the last statement of the copy fails, after the run, individuals and parents are in
+    store._conn.execute(
+        "CREATE TEMP TRIGGER fail BEFORE INSERT ON generations WHEN NEW.run_id <> "
+        f"{run} BEGIN SELECT RAISE(ABORT, 'disk gone'); END"
+    )
+    with pytest.raises(StoreError, match="disk gone"):
+        store.branch(run, 1, config={})
+    total = store._conn.execute("SELECT count(*) FROM individuals").fetchone()[0]
+    assert (len(store.runs()), total) == before
