@@ -19,6 +19,7 @@ import numpy as np
 import numpy.typing as npt
 
 from sinews.errors import SinewsError
+from sinews.files import atomic_path
 from sinews.limits import MAX_TRAJECTORY_BYTES
 
 __all__ = ["NODE_SHAPES", "Trajectory", "TrajectoryError"]
@@ -175,10 +176,8 @@ class Trajectory:
             value = getattr(self, name)
             if value is not None:
                 arrays[name] = np.array(value, dtype=str) if name == "node_shapes" else value
-        tmp = path.with_name(path.name + ".part")
-        with open(tmp, "wb") as fh:
+        with atomic_path(path) as tmp, open(tmp, "wb") as fh:
             np.savez_compressed(fh, **arrays)  # type: ignore[arg-type]
-        os.replace(tmp, path)
         return path
 
     @classmethod

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 from typing import Annotated
 
@@ -10,6 +9,7 @@ import typer
 
 from sinews.errors import SinewsError
 from sinews.evolve import EVALUATORS
+from sinews.files import atomic_path
 from sinews.store import RunStore
 
 __all__ = ["Db", "Executor", "Scheduler", "Workers", "open_store", "write_text"]
@@ -39,10 +39,8 @@ def open_store(db: Path | None, *, readonly: bool = False) -> RunStore:
 
 def write_text(path: Path, text: str) -> None:
     """Write ``text`` to ``path`` atomically (a reader never sees half a file)."""
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.part")
     try:
-        tmp.write_text(text, encoding="utf-8")
-        os.replace(tmp, path)
+        with atomic_path(path) as tmp:
+            tmp.write_text(text, encoding="utf-8")
     except OSError as exc:
-        tmp.unlink(missing_ok=True)
         raise SinewsError(f"{path}: cannot write ({exc.strerror or exc})") from None

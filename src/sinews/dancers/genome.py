@@ -20,6 +20,7 @@ import numpy.typing as npt
 from sinews import safe_json
 from sinews.dancers.skeleton import EDGE_NAMES, NODES
 from sinews.errors import SinewsError
+from sinews.files import atomic_path
 
 __all__ = [
     "BODY_GENES",
@@ -193,10 +194,9 @@ class DancerGenome:
     def save(self, path: str | os.PathLike[str]) -> Path:
         """Write the genome as JSON (atomically) and return the path."""
         path = Path(path)
-        tmp = path.with_name(path.name + ".part")
         try:
-            tmp.write_text(json.dumps(self.to_dict(), indent=1) + "\n")
-            os.replace(tmp, path)
+            with atomic_path(path) as tmp:
+                tmp.write_text(json.dumps(self.to_dict(), indent=1) + "\n")
         except OSError as exc:
             raise GenomeError(f"{path}: cannot write ({exc.strerror})") from None
         return path

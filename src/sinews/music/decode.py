@@ -20,6 +20,7 @@ import numpy.typing as npt
 import soundfile as sf
 
 from sinews.ffmpeg import find_ffmpeg
+from sinews.files import atomic_path
 from sinews.limits import MAX_SECONDS  # the longest song, checked before decoding
 from sinews.music.errors import AudioError
 from sinews.music.ffmpeg import FfmpegFailed, decode_with_ffmpeg
@@ -138,16 +139,16 @@ def save_wav(path: str | os.PathLike[str], samples: npt.ArrayLike, sample_rate: 
         data = data[:, None]
     if data.ndim != 2 or data.shape[0] == 0 or not np.all(np.isfinite(data)):
         raise AudioError(f"{path}: samples must be a finite (S,) or (S, C) array with S > 0")
-    tmp = path.with_name(f".{path.name}.part")
     try:
-        with sf.SoundFile(
-            str(tmp), "w", int(sample_rate), data.shape[1], subtype=fmt[1], format=fmt[0]
-        ) as out:
+        with (
+            atomic_path(path) as tmp,
+            sf.SoundFile(
+                str(tmp), "w", int(sample_rate), data.shape[1], subtype=fmt[1], format=fmt[0]
+            ) as out,
+        ):
             for start in range(0, data.shape[0], _BLOCK_FRAMES):
                 out.write(data[start : start + _BLOCK_FRAMES])
-        os.replace(tmp, path)
     except (OSError, sf.SoundFileError, ValueError) as exc:
-        tmp.unlink(missing_ok=True)
         raise AudioError(f"{path}: cannot write audio ({_reason(exc)})") from None
     return path
 

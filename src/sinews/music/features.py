@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
+from sinews.files import atomic_path
 from sinews.music.errors import AudioError
 
 __all__ = ["ANALYSIS_VERSION", "MusicFeatures"]
@@ -109,13 +110,8 @@ class MusicFeatures:
             tempo_bpm=np.float64(self.tempo_bpm),
             song_hash=np.str_(self.song_hash),
         )
-        tmp = path.with_name(f".{path.name}.{os.getpid()}.part")
-        try:
-            with open(tmp, "wb") as fh:
-                np.savez(fh, **arrays)  # type: ignore[arg-type]
-            os.replace(tmp, path)
-        finally:
-            tmp.unlink(missing_ok=True)
+        with atomic_path(path) as tmp, open(tmp, "wb") as fh:
+            np.savez(fh, **arrays)  # type: ignore[arg-type]
         return path
 
     @classmethod

@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import os
-import secrets
 from collections.abc import Iterator
-from contextlib import contextmanager, suppress
+from contextlib import contextmanager
 from pathlib import Path
 
+from sinews.files import atomic_path
 from sinews.render.errors import RenderError
 
 __all__ = ["atomic_output", "suffix_of"]
@@ -37,13 +37,8 @@ def atomic_output(path: str | os.PathLike[str]) -> Iterator[Path]:
         raise RenderError(f"cannot write {path}: {parent} is not a directory")
     if not os.access(parent, os.W_OK):
         raise RenderError(f"cannot write {path}: {parent} is not writable")
-    # unique per call: two threads writing the same file must not share a temporary
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.{secrets.token_hex(6)}.part")
     try:
-        yield tmp
-        os.replace(tmp, path)
+        with atomic_path(path) as tmp:
+            yield tmp
     except OSError as exc:
         raise RenderError(f"cannot write {path}: {exc.strerror or exc}") from None
-    finally:
-        with suppress(OSError):
-            tmp.unlink()

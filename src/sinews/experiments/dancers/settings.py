@@ -9,7 +9,6 @@ of its settings too: every replay analyses the song at that tempo.
 
 from __future__ import annotations
 
-import os
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -17,6 +16,7 @@ from typing import Any
 from sinews.errors import SinewsError
 from sinews.experiments.dancers.score import DEFAULT_WEIGHTS
 from sinews.experiments.run_config import EvolutionConfig, build_config
+from sinews.files import atomic_path
 from sinews.music.demo import DEMO_NAMES, write_demo
 
 __all__ = ["DEFAULTS", "DEFAULT_SECONDS", "DEMO_PREFIX", "NAME", "dancer_config", "song_path"]
@@ -82,7 +82,6 @@ def song_path(song: str) -> Path:
     path = Path(platformdirs.user_data_dir("sinews")) / "songs" / f"{name}.wav"
     if not path.is_file():
         path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_name(f"{path.name}.{os.getpid()}.part.wav")
-        write_demo(name, tmp)
-        os.replace(tmp, path)
+        with atomic_path(path) as tmp:
+            write_demo(name, tmp)
     return path
