@@ -10,7 +10,10 @@ from pathlib import Path
 
 import pytest
 
+import sinews
 from killed_runs import alive, descendants, sinews_command, stored_generations
+
+PACKAGE = Path(sinews.__file__).parent
 
 
 def run(*args: str) -> subprocess.CompletedProcess[str]:
@@ -52,7 +55,13 @@ def test_ctrl_c_while_starting_exits_130_quietly(delay: float) -> None:
     # finished before the signal (0); killed by it before Python set up its handlers, which
     # the shell reports as 130 too (-SIGINT); or interrupted, saying so in one line (130)
     assert proc.returncode in (0, 130, -signal.SIGINT)
-    assert "Traceback" not in err + out
+    assert "Traceback" not in out
+    if "Traceback" in err:
+        # Python's own start-up (site, the console script's `import re, sys`) can take the
+        # signal on a loaded machine before any sinews code runs; from the first line of
+        # sinews on, the handler in sinews/__main__.py owns it and no frame may be ours
+        assert proc.returncode == -signal.SIGINT
+        assert str(PACKAGE) not in err, err
     if proc.returncode == 130:
         assert err.strip().splitlines()[-1] == "interrupted"
 
