@@ -29,12 +29,12 @@ function floor() {
   const group = new THREE.Group();
   const plane = new THREE.Mesh(
     new THREE.PlaneGeometry(FLOOR_SIZE, FLOOR_SIZE),
-    new THREE.MeshStandardMaterial({ color: 0xdcdcd6, roughness: 0.95 }),
+    new THREE.MeshStandardMaterial({ color: 0xe4e4de, roughness: 0.95, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 }),
   );
   plane.receiveShadow = true;
-  const grid = new THREE.GridHelper(FLOOR_SIZE, FLOOR_SIZE * 4, 0xa8a8a0, 0xc4c4bc);
+  const grid = new THREE.GridHelper(FLOOR_SIZE, FLOOR_SIZE * 4, 0x8c8c84, 0xb0b0a8);
   grid.rotateX(Math.PI / 2);
-  grid.position.z = 0.0005;
+  grid.position.z = 0.001;
   group.add(plane, grid);
   return group;
 }
@@ -59,7 +59,9 @@ export class View3D {
     this.renderer.shadowMap.enabled = true;
     this.scene = new THREE.Scene();
     this.scene.background = new THREE.Color(0xeef1f5);
-    this.scene.add(new THREE.HemisphereLight(0xffffff, 0x8a8a80, 1.6));
+    const sky = new THREE.HemisphereLight(0xffffff, 0x8a8a80, 1.6);
+    sky.position.set(0, 0, 1); // z is up
+    this.scene.add(sky);
     const sun = new THREE.DirectionalLight(0xffffff, 1.8);
     sun.position.set(1.5, -2, 6);
     sun.castShadow = true;
@@ -84,11 +86,17 @@ export class View3D {
     });
     if (header.kinds.includes("plane")) this.scene.add(floor());
     this.moving = this.#movingShapes();
+    this.#pose(0);
 
-    this.camera = new THREE.PerspectiveCamera(40, 1, 0.02, 200);
+    this.camera = new THREE.PerspectiveCamera(40, 1, 0.05, 100);
     this.camera.up.set(0, 0, 1);
-    const centre = this.centreAt(0);
-    this.camera.position.set(centre.x - 2.4, centre.y - 3.0, centre.z + 1.3);
+    // frame the figure and the task's marks at the start, seen from the front left, above
+    const box = new THREE.Box3();
+    for (const mesh of this.meshes) if (mesh) box.expandByObject(mesh);
+    const centre = box.getCenter(new THREE.Vector3());
+    const reach = Math.max(0.5, box.getSize(new THREE.Vector3()).length());
+    const distance = (0.75 * reach) / Math.tan((this.camera.fov * Math.PI) / 360);
+    this.camera.position.copy(centre).add(new THREE.Vector3(-0.45, -0.8, 0.4).normalize().multiplyScalar(distance));
     this.controls = new OrbitControls(this.camera, canvas);
     this.controls.target.copy(centre);
     this.controls.update();
@@ -144,6 +152,14 @@ export class View3D {
       this.controls.update();
     }
     this.frame = t;
+    this.#pose(t);
+    this.sun.target.position.copy(this.controls.target);
+    this.sun.position.copy(this.controls.target).add(new THREE.Vector3(1.5, -2, 6));
+    this.render();
+  }
+
+  /** Place every mesh as at frame ``t``. */
+  #pose(t) {
     for (let g = 0; g < this.count; g++) {
       const mesh = this.meshes[g];
       if (!mesh) continue;
@@ -153,9 +169,6 @@ export class View3D {
       const u = this.unit;
       mesh.quaternion.set(this.quaternions[q + 1] * u, this.quaternions[q + 2] * u, this.quaternions[q + 3] * u, this.quaternions[q] * u).normalize();
     }
-    this.sun.target.position.copy(this.controls.target);
-    this.sun.position.copy(this.controls.target).add(new THREE.Vector3(1.5, -2, 6));
-    this.render();
   }
 
   /** Show the frame playing at ``seconds`` (the audio or page clock). */
