@@ -178,9 +178,7 @@ def test_numba_kernel_agrees_with_numpy_reference(follow: tuple[float, float]) -
     bodies = [random_body(rng, int(rng.integers(2, 15))) for _ in range(12)]
     # most bodies move their home targets by two pose signals (the last rows have none)
     bodies = [
-        dataclasses.replace(b, pose_basis=rng.normal(0.0, 0.1, (b.n_nodes, 2, 2)))
-        if k % 3
-        else b
+        dataclasses.replace(b, pose_basis=rng.normal(0.0, 0.1, (b.n_nodes, 2, 2))) if k % 3 else b
         for k, b in enumerate(bodies)
     ]
     batch = BodyBatch.from_bodies(bodies, seeds=rng.integers(0, 2**63, 12).tolist())
