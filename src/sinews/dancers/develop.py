@@ -123,13 +123,18 @@ def _colors(g: dict[str, float], node_genes: npt.NDArray[np.float64]) -> npt.NDA
     return np.clip(np.round(np.array(rgb) * 255), 0, 255).astype(np.uint8)
 
 
-def develop(genome: DancerGenome, *, x: float = 0.0, n_bands: int = DEFAULT_BANDS) -> Body:
+def develop(
+    genome: DancerGenome, *, x: float = 0.0, n_bands: int = DEFAULT_BANDS, min_pull: bool = True
+) -> Body:
     """Grow the dancer's body, standing on the floor centred at ``x`` metres.
 
     Args:
         genome: the DNA.
         x: horizontal position of the body's centre line.
         n_bands: bands of the music analysis its responders will listen to.
+        min_pull: floor every spring's strength at `MIN_PULL` / rest length (dancers);
+            False keeps the springs as soft as the genes make them (the Falling for You
+            ragdolls, whose arms stretch as they reach).
 
     Returns:
         A `Body` with the nodes of `NODES`, the springs of `EDGE_NAMES`, and
@@ -162,7 +167,8 @@ def develop(genome: DancerGenome, *, x: float = 0.0, n_bands: int = DEFAULT_BAND
     m_i, m_j = mass[edges[:, 0]], mass[edges[:, 1]]
     reduced = m_i * m_j / (m_i + m_j)
     strength = reduced * kind_omega**2 * _lerp(0.5, 1.5, edge_genes[:, 1])
-    strength = np.maximum(strength, _lerp(*MIN_PULL, g["stiffness"]) / rest_length)
+    if min_pull:
+        strength = np.maximum(strength, _lerp(*MIN_PULL, g["stiffness"]) / rest_length)
     easing = _lerp(0.0, 0.25, edge_genes[:, 2])
 
     home = mass * float(_lerp(*_HOME_OMEGA, g["groundedness"])) ** 2
