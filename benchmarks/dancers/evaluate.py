@@ -14,7 +14,10 @@ corpus's REFERENCE beats:
 - align: the raw beat-align score (AIST++) with the reference beats;
 - smooth: `sinews.music.smoothness` (share of motion energy below 4 Hz);
 - stretch: per frame, the largest length / rest length over the springs; "ok" is the
-  share of frames where it is at most 1.5, pooled over dancers; p50 / p95 of the ratio.
+  share of frames where it is at most 1.5, pooled over dancers; p50 / p95 of the ratio;
+- move: how far the body moves, the rms distance of each node from its mean position,
+  in cm, averaged over all nodes, over the trunk (neck, chest, belly, pelvis, hips) and
+  over the knees.
 
 With --evolve N, the first N chosen songs also get an evolution with the product's
 defaults (population 16 x 10 generations, GA, fitness from our own beats, serial, run
@@ -40,6 +43,18 @@ sys.path.insert(0, str(BEATS))
 from fetch import default_cache, excerpt_path, load_corpus  # noqa: E402
 
 STRETCH_LIMIT = 1.5
+TRUNK = ("neck", "chest", "belly", "pelvis", "l_hip", "r_hip")
+KNEES = ("l_knee", "r_knee")
+
+
+def excursion(traj) -> tuple[float, float, float]:
+    """rms distance (cm) of the nodes from their mean positions: all nodes, trunk, knees."""
+    p = traj.positions.astype(np.float64)
+    rms = 100.0 * np.sqrt((np.linalg.norm(p - p.mean(axis=0), axis=2) ** 2).mean(axis=0))
+    names = list(traj.node_names)
+    trunk = float(np.mean([rms[names.index(n)] for n in TRUNK]))
+    knees = float(np.mean([rms[names.index(n)] for n in KNEES]))
+    return float(rms.mean()), trunk, knees
 
 
 def stretch_ratios(traj, rest_length: np.ndarray) -> np.ndarray:
@@ -53,7 +68,9 @@ def stretch_ratios(traj, rest_length: np.ndarray) -> np.ndarray:
 def score_dancers(trajs, bodies, beats) -> dict[str, list[float]]:
     from sinews.music import beat_align_score, beat_lift, smoothness
 
-    out: dict[str, list[float]] = {"lift": [], "align": [], "smooth": [], "ok": []}
+    out: dict[str, list[float]] = {
+        "lift": [], "align": [], "smooth": [], "ok": [], "move": [], "trunk": [], "knees": []
+    }  # fmt: skip
     ratios = []
     for traj, body in zip(trajs, bodies, strict=True):
         out["lift"].append(beat_lift(traj.positions, traj.fps, beats))
@@ -61,6 +78,8 @@ def score_dancers(trajs, bodies, beats) -> dict[str, list[float]]:
         out["smooth"].append(smoothness(traj.positions, traj.fps))
         r = stretch_ratios(traj, body.rest_length)
         out["ok"].append(float(np.mean(r <= STRETCH_LIMIT)))
+        for key, value in zip(("move", "trunk", "knees"), excursion(traj), strict=True):
+            out[key].append(value)
         ratios.append(r)
     pooled = np.concatenate(ratios)
     out["ratio_p50"] = [float(np.percentile(pooled, 50))]
@@ -125,9 +144,9 @@ def main() -> None:
     rows = []
     print(
         "| song | ref BPM | ours BPM | lift | lift, responders off | align | smooth "
-        "| frames ≤ 1.5× | stretch p50 / p95 | evolved lift (ours) |"
+        "| frames ≤ 1.5× | stretch p50 / p95 | move cm (trunk, knees) | evolved lift (ours) |"
     )
-    print("|---|---|---|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     start = time.perf_counter()
     for n, song in enumerate(chosen):
         path = excerpt_path(args.cache, song["id"])
@@ -157,7 +176,8 @@ def main() -> None:
             f"| {row['id']} | {row['ref_bpm']:.1f} | {row['ours_bpm']:.1f} | "
             f"{row['lift']:.3f} | {row['lift_off']:.3f} | {row['align']:.3f} | "
             f"{row['smooth']:.2f} | {row['ok']:.3f} | "
-            f"{row['ratio_p50']:.2f} / {row['ratio_p95']:.2f} | {evolved} |",
+            f"{row['ratio_p50']:.2f} / {row['ratio_p95']:.2f} | "
+            f"{row['move']:.1f} ({row['trunk']:.1f}, {row['knees']:.1f}) | {evolved} |",
             flush=True,
         )
     lifts = np.array([r["lift"] for r in rows])
@@ -170,6 +190,9 @@ def main() -> None:
         "mean_lift_off": float(np.mean([r["lift_off"] for r in rows])),
         "mean_align": float(np.mean([r["align"] for r in rows])),
         "mean_smooth": float(np.mean([r["smooth"] for r in rows])),
+        "move_trunk_knees_cm": [
+            float(np.mean([r[k] for r in rows])) for k in ("move", "trunk", "knees")
+        ],
         "frames_ok": float(np.mean(oks)),
         "dancer_ok_min_p5_p50": [
             float(np.min(oks)),
@@ -187,7 +210,9 @@ def main() -> None:
         f"\n{summary['songs']} songs: mean lift {summary['mean_lift']:.3f} "
         f"(min {summary['min_lift']:.3f}, {summary['songs_lift_le_0']} songs ≤ 0; "
         f"responders off {summary['mean_lift_off']:.3f}), align {summary['mean_align']:.3f}, "
-        f"smooth {summary['mean_smooth']:.2f}; frames with every spring ≤ 1.5×: "
+        f"smooth {summary['mean_smooth']:.2f}; move "
+        + " / ".join(f"{v:.1f}" for v in summary["move_trunk_knees_cm"])
+        + " cm (all / trunk / knees); frames with every spring ≤ 1.5×: "
         f"{summary['frames_ok']:.3f} (per dancer min / p5 / median "
         + " / ".join(f"{v:.3f}" for v in summary["dancer_ok_min_p5_p50"])
         + f"); failed {summary['failed']}"

@@ -5,7 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from sinews.music.beats import onset_envelope, tempo_prior, track
+from sinews.errors import SinewsError
+from sinews.music import Audio, analyse, shift_beats
+from sinews.music.beats import HEARD_SLACK_S, onset_envelope, tempo_prior, track
 
 FPS = 60.0
 
@@ -61,3 +63,32 @@ def test_envelope_balances_registers() -> None:
     env = onset_envelope(onset, centres)
     low = onset_envelope(onset[:, :1], centres[:1])
     assert np.corrcoef(env, low)[0, 1] > 0.3
+
+
+def test_no_beats_over_a_silent_intro(groove_audio: Audio) -> None:
+    # the envelope's smoothing reaches a period back: without the first-heard rule the
+    # tracker put beats over the silence before the song
+    lead = 3.0
+    rate = groove_audio.sample_rate
+    padded = Audio(
+        np.concatenate([np.zeros(round(lead * rate), np.float32), groove_audio.samples]), rate
+    )
+    plain, silent = analyse(groove_audio), analyse(padded)
+    assert len(silent.beats) > 10
+    assert silent.beats[0] >= lead - HEARD_SLACK_S
+    assert silent.beats[0] <= lead + plain.beats[0] + 60.0 / plain.tempo_bpm
+
+
+def test_shifted_beats_move_by_a_fraction_of_their_beat(groove_audio: Audio) -> None:
+    music = analyse(groove_audio)
+    later = shift_beats(music, 0.5)
+    intervals = np.diff(music.beats)
+    np.testing.assert_allclose(later.beats[:-1], music.beats[:-1] + 0.5 * intervals)
+    assert later.beats[-1] < music.duration
+    earlier = shift_beats(music, -0.25)
+    assert earlier.beats[0] >= 0.0
+    frame = round(earlier.beats[3] * music.fps)
+    assert min(earlier.beat_phase[frame], 1.0 - earlier.beat_phase[frame]) < 0.05
+    assert shift_beats(music, 0.0) is music
+    with pytest.raises(SinewsError, match="beat shift"):
+        shift_beats(music, 0.6)

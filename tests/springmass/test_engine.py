@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from typing import Any
 
 import numpy as np
@@ -130,6 +131,21 @@ def test_external_forces_per_step_and_constant() -> None:
         run(body, 5, external=np.zeros((3, 1, 1, 2)))
 
 
+def test_pose_signals_move_the_home_target() -> None:
+    # one node held by home: it settles where the pose moves its target, and back after
+    body = Body.build(["a"], [[0.0, 1.0]], [], home=[400.0], drag=0.2,
+                      pose_basis=[[[0.1, 0.0], [0.0, -0.05]]])  # fmt: skip
+    pose = np.tile([2.0, 1.0], (300, 1))
+    moved, _ = run(body, 300, pose=pose)
+    np.testing.assert_allclose(moved.positions[0, 0], [0.2, 0.95], atol=1e-6)
+    back, _ = run(body, 600, pose=pose)
+    np.testing.assert_allclose(back.positions[0, 0], [0.0, 1.0], atol=1e-6)
+    with pytest.raises(BodyError, match="pose must have shape"):
+        run(body, 5, pose=np.zeros((5, 3)))
+    with pytest.raises(BodyError, match="pose_basis must have shape"):
+        Body.build(["a"], [[0.0, 0.0]], [], pose_basis=np.zeros((2, 1, 2)))
+
+
 def random_body(rng: np.random.Generator, n: int) -> Body:
     n_edges = int(rng.integers(1, 3 * n))
     edges: list[tuple[int, int]] = []
@@ -160,9 +176,15 @@ def random_body(rng: np.random.Generator, n: int) -> Body:
 def test_numba_kernel_agrees_with_numpy_reference(follow: tuple[float, float]) -> None:
     rng = np.random.default_rng(7)
     bodies = [random_body(rng, int(rng.integers(2, 15))) for _ in range(12)]
+    # most bodies move their home targets by two pose signals (the last rows have none)
+    bodies = [
+        dataclasses.replace(b, pose_basis=rng.normal(0.0, 0.1, (b.n_nodes, 2, 2))) if k % 3 else b
+        for k, b in enumerate(bodies)
+    ]
     batch = BodyBatch.from_bodies(bodies, seeds=rng.integers(0, 2**63, 12).tolist())
     params = EngineParams(home_follow=follow, restitution=0.3)
     push = rng.normal(0.0, 5.0, (200, *batch.rest.shape))
+    pose = rng.normal(0.0, 1.0, (150, 2))
     results = [
         simulate(
             batch,
@@ -170,6 +192,7 @@ def test_numba_kernel_agrees_with_numpy_reference(follow: tuple[float, float]) -
             200,
             params,
             external=push,
+            pose=pose,
             backend=b,
             record_stride=3,
             record_forces=True,

@@ -16,7 +16,7 @@ import numpy as np
 
 from killed_runs import sinews_command
 from sinews.experiments.dancers.run import run_music
-from sinews.music import analyse_file
+from sinews.music import analyse_file, shift_beats
 from sinews.store import RunStore
 from sinews.studio.service import StudioSettings, Worker
 from sinews.trajectory import Trajectory
@@ -78,6 +78,7 @@ def test_a_tempo_corrected_studio_run_replays_at_its_tempo_in_the_cli(
         analysed = worker.call(lambda s: s.runs.music(run)[0].tempo_bpm)
         corrected = round(analysed * 2 / 3, 1)  # a 2:3 correction the ×2 / ÷2 buttons cannot make
         worker.call(lambda s: s.runs.set_bpm(run, corrected))
+        worker.call(lambda s: s.runs.set_beat_shift(run, 0.25))
         dancer = worker.call(lambda s: s.store.individuals(run, 0)[3].id)
         song = worker.call(lambda s: s.runs.music(run)[1])
     finally:
@@ -88,7 +89,7 @@ def test_a_tempo_corrected_studio_run_replays_at_its_tempo_in_the_cli(
     assert rendered.returncode == 0, rendered.stderr
     beats = Trajectory.load(motion).beats
     assert beats is not None
-    expected = analyse_file(song, bpm=corrected).beats
+    expected = shift_beats(analyse_file(song, bpm=corrected), 0.25).beats
     np.testing.assert_array_equal(beats, expected)
     assert not np.array_equal(beats[: len(expected)], analyse_file(song).beats[: len(expected)])
     with RunStore(db, readonly=True) as store:

@@ -222,6 +222,18 @@ def test_the_tempo_can_be_doubled_and_reset(client: TestClient) -> None:
     assert reset["tempo"] == pytest.approx(info["tempo"]) and reset["bpm"] is None
 
 
+def test_the_beats_can_be_nudged_and_reset(client: TestClient) -> None:
+    run = client.get("/api/session").json()["run"]
+    assert client.get(f"/api/runs/{run}").json()["beatShift"] == 0.0
+    nudged = client.post(f"/api/runs/{run}/shift", json={"shift": 0.125}).json()
+    assert nudged["beatShift"] == 0.125
+    assert client.post(f"/api/runs/{run}/shift", json={"shift": 0.9}).status_code == 400
+    assert client.post(f"/api/runs/{run}/shift", json={"shift": "1/8"}).status_code == 400
+    assert client.get(f"/api/runs/{run}/shift").status_code == 405
+    reset = client.post(f"/api/runs/{run}/shift", json={"shift": None}).json()
+    assert reset["beatShift"] == 0.0
+
+
 def test_the_live_socket_steps_and_pulls(client: TestClient) -> None:
     run = client.get("/api/session").json()["run"]
     dancer = decode_pack(client.get(f"/api/runs/{run}/generations/0").content)[0]["dancers"][0]

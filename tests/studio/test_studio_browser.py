@@ -293,6 +293,26 @@ def test_a_typed_tempo_is_the_runs(page: Any, server: StudioServer) -> None:
     assert run_on_server(page, run)["bpm"] == 97.5
 
 
+def test_the_beat_nudge_is_the_runs(page: Any, server: StudioServer) -> None:
+    open_studio(page, server.url)
+    fresh_run(page)
+    run = page.evaluate("studio.run.id")
+    expect(page.locator("#beat-shift")).to_have_text("beats ±0")
+    for _ in range(2):
+        page.click("#shift-earlier")
+        page.wait_for_function(f"{IDLE}")
+    page.wait_for_function(f"studio.run.beatShift === -0.25 && {IDLE}")
+    expect(page.locator("#beat-shift")).to_have_text("beats −2/8")
+    assert run_on_server(page, run)["beatShift"] == -0.25
+    for _ in range(6):
+        page.click("#shift-later")
+        page.wait_for_function(f"{IDLE}")
+    page.wait_for_function(f"studio.run.beatShift === 0.5 && {IDLE}")
+    expect(page.locator("#shift-later")).to_be_disabled()  # at most half a beat
+    expect(page.locator("#beat-shift")).to_have_text("beats +4/8")
+    assert run_on_server(page, run)["beatShift"] == 0.5
+
+
 def test_tapping_four_times_or_more_sets_the_tempo(page: Any, server: StudioServer) -> None:
     page.clock.install()
     open_studio(page, server.url)

@@ -122,6 +122,25 @@ def test_a_tempo_correction_reanalyses_the_beats(runs: StudioRuns) -> None:
         runs.set_bpm(run_id, 1000.0)
 
 
+def test_a_beat_shift_moves_the_beats_and_is_kept(runs: StudioRuns) -> None:
+    run_id = runs.create(runs.songs.demo(), seed=4)
+    beats = runs.music(run_id)[0].beats
+    runs.set_beat_shift(run_id, -0.25)
+    assert runs.get(run_id).beat_shift == -0.25
+    moved = runs.music(run_id)[0].beats
+    interval = np.diff(beats)[0]
+    np.testing.assert_allclose(moved[:3], beats[:3] - 0.25 * np.diff(beats)[:3])
+    assert 0.2 * interval < beats[1] - moved[1] < 0.3 * interval
+    motion = Motion(runs)
+    _, trajs = motion.dance_generation(run_id, 0)
+    assert trajs[0].beats is not None and np.array_equal(trajs[0].beats, moved)
+    runs.set_beat_shift(run_id, None)
+    assert runs.get(run_id).beat_shift == 0.0
+    assert np.array_equal(runs.music(run_id)[0].beats, beats)
+    with pytest.raises(StudioError, match="beat shift"):
+        runs.set_beat_shift(run_id, 0.75)
+
+
 def test_a_generation_pack_holds_every_dancer_in_millimetres(runs: StudioRuns) -> None:
     run_id = runs.create(runs.songs.demo(), seed=4)
     motion = Motion(runs)

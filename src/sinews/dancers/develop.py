@@ -18,6 +18,7 @@ import numpy as np
 import numpy.typing as npt
 
 from sinews.dancers.genome import DancerGenome
+from sinews.dancers.groove import groove_basis
 from sinews.dancers.responders import SPECIES, responders
 from sinews.dancers.skeleton import EDGE_NAMES, EDGES, NODES, EdgeKind, edge_kind
 from sinews.music.spectrum import DEFAULT_BANDS
@@ -56,6 +57,11 @@ RESPONDER_MASS_POWER = 0.5
 heavy node gets more newtons but still less acceleration than a light one, so the
 pelvis and chest sway and bounce visibly while a hand still flies further."""
 RESPONDER_MASS_REF = 1.0
+MIN_PULL = (60.0, 120.0)
+"""Newtons it takes at least to stretch a spring by its own rest length, at stiffness
+genes 0 and 1: strength is at least this / rest length. A given pull stretches a short
+spring by a larger share of its length, so the short neck and shoulder springs of light,
+soft bodies were the ones past 1.5× rest length."""
 
 
 def _part(name: str) -> str:
@@ -117,17 +123,23 @@ def _colors(g: dict[str, float], node_genes: npt.NDArray[np.float64]) -> npt.NDA
     return np.clip(np.round(np.array(rgb) * 255), 0, 255).astype(np.uint8)
 
 
-def develop(genome: DancerGenome, *, x: float = 0.0, n_bands: int = DEFAULT_BANDS) -> Body:
+def develop(
+    genome: DancerGenome, *, x: float = 0.0, n_bands: int = DEFAULT_BANDS, min_pull: bool = True
+) -> Body:
     """Grow the dancer's body, standing on the floor centred at ``x`` metres.
 
     Args:
         genome: the DNA.
         x: horizontal position of the body's centre line.
         n_bands: bands of the music analysis its responders will listen to.
+        min_pull: floor every spring's strength at `MIN_PULL` / rest length (dancers);
+            False keeps the springs as soft as the genes make them (the Falling for You
+            ragdolls, whose arms stretch as they reach).
 
     Returns:
         A `Body` with the nodes of `NODES`, the springs of `EDGE_NAMES`, and
-        one actuator per filled responder slot (drive channel = music band).
+        one actuator per filled responder slot (drive channel = music band), and the
+        groove's pose basis (`sinews.dancers.groove`).
     """
     g = genome.body
     pose = _rest_pose(g)
@@ -155,6 +167,8 @@ def develop(genome: DancerGenome, *, x: float = 0.0, n_bands: int = DEFAULT_BAND
     m_i, m_j = mass[edges[:, 0]], mass[edges[:, 1]]
     reduced = m_i * m_j / (m_i + m_j)
     strength = reduced * kind_omega**2 * _lerp(0.5, 1.5, edge_genes[:, 1])
+    if min_pull:
+        strength = np.maximum(strength, _lerp(*MIN_PULL, g["stiffness"]) / rest_length)
     easing = _lerp(0.0, 0.25, edge_genes[:, 2])
 
     home = mass * float(_lerp(*_HOME_OMEGA, g["groundedness"])) ** 2
@@ -184,4 +198,5 @@ def develop(genome: DancerGenome, *, x: float = 0.0, n_bands: int = DEFAULT_BAND
             ]
         ),
         actuator_custom=np.array([r.custom for r in slots]),
+        pose_basis=groove_basis(rest, g),
     )

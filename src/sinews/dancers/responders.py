@@ -66,7 +66,7 @@ of random dancers barely beat motion without music; 3–6 frames of reaction put
 the pause on the beat and roughly double the score (docs/architecture.md).
 """
 
-_STRENGTH = (5.0, 35.0)
+_STRENGTH = (8.0, 50.0)
 """Newtons at full drive for strength genes 0 and 1, on a 1 kg node (see
 `sinews.dancers.develop.RESPONDER_MASS_POWER`). Was 20–140 N: springs stretched past
 1.5× in 75 % of frames."""

@@ -13,7 +13,7 @@ Typical use::
 
 from __future__ import annotations
 
-from sinews.music.analysis import analyse, analyse_file, default_cache_dir
+from sinews.music.analysis import analyse, analyse_file, default_cache_dir, shift_beats
 from sinews.music.beat_align import beat_align_score, beat_lift, kinematic_beats, smoothness
 from sinews.music.classic import classic_kick_frames, classic_kicks, classic_spectra
 from sinews.music.decode import MAX_SECONDS, MIN_SECONDS, Audio, load_audio, save_wav
@@ -45,6 +45,7 @@ __all__ = [
     "kinematic_beats",
     "load_audio",
     "save_wav",
+    "shift_beats",
     "smoothness",
     "write_demo",
 ]

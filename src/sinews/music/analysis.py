@@ -13,6 +13,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import logging
 import math
@@ -36,11 +37,22 @@ from sinews.music.spectrum import (
     window_length,
 )
 
-__all__ = ["MAX_BPM", "MIN_BPM", "analyse", "analyse_file", "default_cache_dir"]
+__all__ = [
+    "MAX_BEAT_SHIFT",
+    "MAX_BPM",
+    "MIN_BPM",
+    "analyse",
+    "analyse_file",
+    "default_cache_dir",
+    "shift_beats",
+]
 
 MIN_BPM = 20.0
 MAX_BPM = 400.0
 """The tempi a person may set in place of the analysed one."""
+
+MAX_BEAT_SHIFT = 0.5
+"""A person may move the beats by at most this fraction of a beat either way."""
 
 LEVEL_FLOOR_DB = -80.0
 """Levels never go below this many dB under the song's loudness reference."""
@@ -125,6 +137,24 @@ def analyse(
         beat_phase=beat_phase(beats, len(levels), fps, tempo),
         song_hash=song_hash or _samples_sha256(audio),
     )
+
+
+def shift_beats(music: MusicFeatures, fraction: float) -> MusicFeatures:
+    """``music`` with every beat moved by ``fraction`` of its beat (negative: earlier).
+
+    Each beat moves by ``fraction`` times the interval to the next beat (the last one by
+    the one before it); beats that leave the song are dropped and the beat phase follows.
+    ``fraction`` is in [-`MAX_BEAT_SHIFT`, `MAX_BEAT_SHIFT`]; 0 returns ``music`` itself.
+    """
+    check_number("beat shift", fraction, -MAX_BEAT_SHIFT, MAX_BEAT_SHIFT)
+    beats = np.asarray(music.beats, dtype=np.float64)
+    if fraction == 0.0 or len(beats) < 2:
+        return music
+    intervals = np.diff(beats)
+    moved = beats + fraction * np.append(intervals, intervals[-1])
+    moved = moved[(moved >= 0.0) & (moved < music.duration)]
+    phase = beat_phase(moved, music.n_frames, music.fps, music.tempo_bpm)
+    return dataclasses.replace(music, beats=moved, beat_phase=phase)
 
 
 def _decibels(power: npt.NDArray[np.float32]) -> npt.NDArray[np.float32]:

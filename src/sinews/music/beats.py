@@ -16,7 +16,9 @@ Programming", J. New Music Research 36(1)) at the metrical level a listener taps
 4. Beats: the beat sequence maximising the (Gaussian-smoothed) envelope at the beats
    plus a penalty ``-tightness * log(interval / period)**2`` for each interval, found by
    dynamic programming (compiled with numba), then stripped of weak beats at the ends
-   (as in librosa's implementation of the same method).
+   (as in librosa's implementation of the same method) and of beats before the first
+   sound (`_from_first_heard`): the smoothing spreads the first onset up to a period
+   back, so a silent intro used to get a beat or more.
 """
 
 from __future__ import annotations
@@ -61,6 +63,11 @@ FIT_COUNT_POWER = 0.25
 _REFINE = 0.06
 """A relative's period is refined to the autocorrelation peak within this fraction."""
 
+
+HEARD = 0.1
+"""The music is heard from the first frame whose onset envelope reaches this share of
+its 95th percentile; beats more than `HEARD_SLACK_S` before it are dropped."""
+HEARD_SLACK_S = 0.05
 
 ENVELOPE_SPLITS_HZ = (120.0, 300.0, 1000.0, 3000.0)
 """The bands are pooled into five groups split at these frequencies for the envelope."""
@@ -186,7 +193,7 @@ def track(
     mean = float(local.mean())
     best: tuple[float, float, npt.NDArray[np.float64]] | None = None
     for tempo in candidates:
-        frames = _beat_frames(local, 60.0 * fps / tempo)
+        frames = _beat_frames(local, 60.0 * fps / tempo, fps)
         if len(frames) < 2:
             continue
         fit = _fit(local, frames) / mean * tempo_prior(tempo)
@@ -226,10 +233,12 @@ def track_beats(
     """
     if envelope.std() == 0.0 or len(envelope) < 2:
         return np.zeros(0)
-    return _beat_frames(_normalised(envelope), 60.0 * fps / bpm).astype(np.float64) / fps
+    return _beat_frames(_normalised(envelope), 60.0 * fps / bpm, fps).astype(np.float64) / fps
 
 
-def _beat_frames(normalised: npt.NDArray[np.float64], period: float) -> npt.NDArray[np.int64]:
+def _beat_frames(
+    normalised: npt.NDArray[np.float64], period: float, fps: float
+) -> npt.NDArray[np.int64]:
     """Beat frames of the DP tracker at ``period`` frames on a normalised envelope."""
     kernel_half = max(1, round(period))
     kernel = np.exp(-0.5 * (np.arange(-kernel_half, kernel_half + 1) * 32.0 / period) ** 2)
@@ -238,8 +247,18 @@ def _beat_frames(normalised: npt.NDArray[np.float64], period: float) -> npt.NDAr
     offsets = np.arange(-round(2 * period), -round(period / 2) + 1)
     penalty = -TIGHTNESS * np.log(-offsets / period) ** 2
     back, score = _dynamic_programme(local, offsets, penalty, 0.01 * float(local.max()))
-    frames = _backtrack(back, score)
-    return _trim_weak(frames, local)
+    frames = _trim_weak(_backtrack(back, score), local)
+    return _from_first_heard(frames, normalised, round(HEARD_SLACK_S * fps))
+
+
+def _from_first_heard(
+    frames: npt.NDArray[np.int64], normalised: npt.NDArray[np.float64], slack: int
+) -> npt.NDArray[np.int64]:
+    """``frames`` without those more than ``slack`` frames before the first sound (`HEARD`)."""
+    heard = np.flatnonzero(normalised >= HEARD * np.percentile(normalised, 95.0))
+    if len(heard) == 0:
+        return frames
+    return frames[frames >= heard[0] - slack]
 
 
 @njit(cache=True)

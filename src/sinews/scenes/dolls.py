@@ -38,7 +38,7 @@ def doll(rng: np.random.Generator, *, scale: float = 1.0) -> Body:
     genome = DancerGenome.random(rng).replace(
         jitter=rng.uniform(0.15, 0.4), arm_spread=rng.uniform(0.25, 0.6)
     )
-    body = develop(genome).without_actuators()
+    body = develop(genome, min_pull=False).without_actuators()
     area = scale**2
     centre = body.rest.mean(axis=0)
     return dataclasses.replace(

@@ -91,6 +91,7 @@ class BodyBatch:
         attraction: (P, A, 2); attraction_strength, attraction_reach: (P, A).
         n_actuators: (P,); actuator_node, actuator_kind: (P, R) int;
         actuator_channels: (P, R, 2); actuator_strength, actuator_custom: (P, R).
+        pose_basis: (P, N, K, 2) home-target moves per unit pose signal.
         drag: (P,); seeds: (P,) uint64 wiggle-noise seeds.
         bodies: the bodies it was built from.
     """
@@ -118,6 +119,7 @@ class BodyBatch:
     actuator_channels: IntArray
     actuator_strength: FloatArray
     actuator_custom: FloatArray
+    pose_basis: FloatArray
     drag: FloatArray
     seeds: npt.NDArray[np.uint64] = field(repr=False)
 
@@ -138,6 +140,7 @@ class BodyBatch:
         n_act = np.array([b.n_actuators for b in bodies], dtype=np.int64)
         big_n = int(n_nodes.max())
         big_e, big_a, big_r = (max(1, int(n.max())) for n in (n_edges, n_attr, n_act))
+        big_k = max(b.pose_basis.shape[1] for b in bodies)
 
         def pad(
             name: str, shape: tuple[int, ...], fill: float, dtype: type = np.float64
@@ -172,6 +175,7 @@ class BodyBatch:
             actuator_channels=pad("actuator_channels", (big_r, 2), 0, np.int64),
             actuator_strength=pad("actuator_strength", (big_r,), 0.0),
             actuator_custom=pad("actuator_custom", (big_r,), 0.0),
+            pose_basis=_pad_basis(bodies, big_n, big_k),
             drag=np.array([b.drag for b in bodies], dtype=np.float64),
             seeds=np.array([s & 0xFFFFFFFFFFFFFFFF for s in seeds], dtype=np.uint64),
         )
@@ -195,6 +199,13 @@ class BodyBatch:
             status=np.zeros(self.size, dtype=np.int8),
             failed_step=np.full(self.size, -1, dtype=np.int64),
         )
+
+
+def _pad_basis(bodies: tuple[Body, ...], big_n: int, big_k: int) -> FloatArray:
+    out = np.zeros((len(bodies), big_n, big_k, 2))
+    for p, body in enumerate(bodies):
+        out[p, : body.n_nodes, : body.pose_basis.shape[1]] = body.pose_basis
+    return out
 
 
 @dataclass

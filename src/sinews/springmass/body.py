@@ -63,6 +63,8 @@ class Body:
         actuator_channels: (R, 2) first and last drive channel each actuator reads.
         actuator_strength: (R,) newtons at drive 1, >= 0.
         actuator_custom: (R,) tuning value of each actuator's kind, in [0, 1].
+        pose_basis: (N, K, 2) metres each node's home target moves per unit of each of K
+            pose signals (`simulate`'s ``pose``): a whole-body move the springs follow.
     """
 
     names: tuple[str, ...]
@@ -86,6 +88,7 @@ class Body:
     actuator_channels: IntArray = field(default_factory=lambda: np.zeros((0, 2), np.int64))
     actuator_strength: FloatArray = field(default_factory=lambda: np.zeros(0))
     actuator_custom: FloatArray = field(default_factory=lambda: np.zeros(0))
+    pose_basis: FloatArray = field(default_factory=lambda: np.zeros((0, 0, 2)))
 
     def __post_init__(self) -> None:
         names = tuple(str(n) for n in self.names)
@@ -124,6 +127,14 @@ class Body:
         for name in ("attraction_strength", "attraction_reach"):
             set_(self, name, _float_array(getattr(self, name), (len(pairs),), name))
         self._check_actuators()
+        basis = np.array(self.pose_basis, dtype=np.float64)
+        if basis.size == 0:
+            basis = np.zeros((n, 0, 2))
+        if basis.ndim != 3 or basis.shape[0] != n or basis.shape[2] != 2:
+            raise BodyError(f"pose_basis must have shape ({n}, K, 2), got {basis.shape}")
+        if not np.all(np.isfinite(basis)):
+            raise BodyError("pose_basis must be finite")
+        set_(self, "pose_basis", basis)
         if self.colors is not None:
             colors = np.asarray(self.colors)
             if colors.shape != (n, 3):
@@ -155,7 +166,7 @@ class Body:
             raise BodyError("actuator_custom must be in [0, 1]")
 
     def without_actuators(self) -> Body:
-        """The same body with every actuator removed."""
+        """The same body with every actuator and pose move removed (it hears no music)."""
         return dataclasses.replace(
             self,
             actuator_node=np.zeros(0, np.int64),
@@ -163,6 +174,7 @@ class Body:
             actuator_channels=np.zeros((0, 2), np.int64),
             actuator_strength=np.zeros(0),
             actuator_custom=np.zeros(0),
+            pose_basis=np.zeros((0, 0, 2)),
         )
 
     @property

@@ -58,6 +58,7 @@ def simulate(
     external: npt.ArrayLike | None = None,
     drive: npt.ArrayLike | None = None,
     phase: npt.ArrayLike | None = None,
+    pose: npt.ArrayLike | None = None,
     record: bool = True,
     record_stride: int = 1,
     record_forces: bool = False,
@@ -75,6 +76,8 @@ def simulate(
         drive: (D, C) values >= 0 that drive the actuators; row k is read at
             global step k (``state.step`` counts from 0), none after the last row.
         phase: (D,) phase signal in [0, 1) for SWAY and SHAKE actuators (default zeros).
+        pose: (Q, K) pose signals that move the home targets by the bodies'
+            ``pose_basis``; row k is read at global step k, none after the last row.
         record: keep the positions every ``record_stride`` steps.
         record_forces: also keep the net force on each node (debug overlay).
         backend: ``"numba"`` (fast) or ``"numpy"`` (the reference).
@@ -94,6 +97,7 @@ def simulate(
         raise BodyError("state does not belong to this batch")
     ext = _external(external, n_steps, (n_bodies, big_n, 2))
     drive_table, phase_row = _drive(batch, drive, phase)
+    pose_table = _pose(batch, pose)
     new = state.copy()
     n_rec = n_steps // record_stride + 1 if record else 0
     rec_pos = np.zeros((n_rec, n_bodies, big_n, 2), dtype=np.float32)
@@ -107,7 +111,7 @@ def simulate(
         batch.attraction, batch.attraction_strength, batch.attraction_reach,
         batch.drag, batch.seeds, batch.n_actuators, batch.actuator_node, batch.actuator_kind,
         batch.actuator_channels, batch.actuator_strength, batch.actuator_custom,
-        drive_table, phase_row, ext, state.step, n_steps,
+        batch.pose_basis, drive_table, phase_row, pose_table, ext, state.step, n_steps,
         params.dt, params.gravity, params.floor, params.floor_y, params.friction,
         params.restitution, *params.home_follow, params.wiggle_steps,
         params.wiggle_seeded_phase, params.max_speed,
@@ -137,6 +141,18 @@ def _drive(
     if row.shape != (len(table),):
         raise BodyError(f"phase must have shape ({len(table)},), got {row.shape}")
     return np.ascontiguousarray(table), row
+
+
+def _pose(batch: BodyBatch, pose: npt.ArrayLike | None) -> npt.NDArray[np.float64]:
+    n_signals = batch.pose_basis.shape[2]
+    if pose is None:
+        return np.zeros((0, n_signals))
+    table = np.asarray(pose, dtype=np.float64)
+    if table.ndim != 2 or table.shape[1] != n_signals:
+        raise BodyError(f"pose must have shape (steps, {n_signals}), got {table.shape}")
+    if not np.all(np.isfinite(table)):
+        raise BodyError("pose values must be finite")
+    return np.ascontiguousarray(table)
 
 
 def _external(

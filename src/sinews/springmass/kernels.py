@@ -3,7 +3,7 @@
 Per step (seed 000, "Animating tensegrity objects"):
   1. clear forces;
   2. force rules: gravity x weight, home (toward the rest pose, optionally
-     following the centroid), wiggle, attraction, actuators, external;
+     following the centroid and moved by the pose signals), wiggle, attraction, actuators, external;
   3. springs: each edge pushes/pulls its ends by strength x (length - ideal);
   4. integrate v += F/m dt, x += v dt;
   5. easing: move edge ends toward the ideal length by ``easing`` of the error;
@@ -138,8 +138,10 @@ def simulate_kernel(
     act_channels,
     act_strength,
     act_custom,
+    pose_basis,
     drive,
     phase,
+    pose,
     external,
     start_step,
     n_steps,
@@ -165,6 +167,8 @@ def simulate_kernel(
         status, failed_step: (P,) int8 and int64, updated in place.
         drive: (D, C) actuator drive table, row = global step (none after row D - 1).
         phase: (D,) phase signal in [0, 1) for SWAY actuators.
+        pose_basis: (P, N, K, 2) home-target metres per unit of each pose signal.
+        pose: (Q, K) pose signals, row = global step (none after row Q - 1).
         external: (S, P, N, 2) caller forces; S = 0 none, 1 constant, n_steps per step.
         rec_pos: (R, P, N, 2) float32 with R = n_steps // record_stride + 1, or R = 0.
         rec_force: like rec_pos (net force in the step after each record), or R = 0.
@@ -174,6 +178,8 @@ def simulate_kernel(
     big_n = pos.shape[1]
     n_ext = external.shape[0]
     n_drive = drive.shape[0]
+    n_pose = pose.shape[0]
+    n_signals = pose.shape[1]
     n_rec = rec_pos.shape[0]
     keep_forces = rec_force.shape[0] > 0
     for p in prange(n_bodies):
@@ -217,9 +223,16 @@ def simulate_kernel(
             knot = (step + clock) // wiggle_steps
             blend = _smooth((step + clock - knot * wiggle_steps) / wiggle_steps)
             seed = seeds[p]
+            moved = step < n_pose
             for i in range(n):
-                fx = home[p, i] * (rest[p, i, 0] + off_x - pos[p, i, 0])
-                fy = home[p, i] * (rest[p, i, 1] + off_y - pos[p, i, 1])
+                gx = 0.0
+                gy = 0.0
+                if moved:
+                    for k in range(n_signals):
+                        gx += pose_basis[p, i, k, 0] * pose[step, k]
+                        gy += pose_basis[p, i, k, 1] * pose[step, k]
+                fx = home[p, i] * (rest[p, i, 0] + off_x + gx - pos[p, i, 0])
+                fy = home[p, i] * (rest[p, i, 1] + off_y + gy - pos[p, i, 1])
                 fy -= gravity * mass[p, i] * weight[p, i]
                 amp = wiggle[p, i]
                 if amp != 0.0:

@@ -50,8 +50,10 @@ def simulate_reference(
     act_channels,
     act_strength,
     act_custom,
+    pose_basis,
     drive,
     phase,
+    pose,
     external,
     start_step,
     n_steps,
@@ -95,7 +97,10 @@ def simulate_reference(
         # 1-2. clear forces, force rules
         centre = (pos * real[..., None]).sum(axis=1) / count
         offset = ((centre - rest_centre) * [follow_x, follow_y])[:, None, :]
-        force = home[..., None] * (rest + offset - pos)
+        moved = np.zeros_like(pos)
+        if step < pose.shape[0]:
+            moved = np.einsum("pnkd,k->pnd", pose_basis, pose[step])
+        force = home[..., None] * (rest + offset + moved - pos)
         force[..., 1] -= gravity * mass * weight
         ticks = (step + clock)[:, None]  # (P, 1)
         knot = ticks // wiggle_steps

@@ -19,6 +19,7 @@ from starlette.responses import FileResponse, JSONResponse, Response
 from starlette.routing import BaseRoute, Route, WebSocketRoute
 
 from sinews.evolve import Variation
+from sinews.music.analysis import MAX_BEAT_SHIFT
 from sinews.studio.exports import (
     MEDIA_TYPES,
     dance_for,
@@ -68,6 +69,7 @@ def _run_json(studio: Studio, run: StudioRun) -> dict[str, Any]:
         "song": _song_json(run.song),
         "bpm": run.bpm,
         "tempo": music.tempo_bpm,
+        "beatShift": run.beat_shift,
         "duration": music.duration,
         "seconds": run.seconds,
         "cut": cut_note(run.seconds, music.duration),
@@ -195,6 +197,21 @@ async def set_bpm(request: Request) -> JSONResponse:
     return JSONResponse(await _worker(request).run(change))
 
 
+async def set_beat_shift(request: Request) -> JSONResponse:
+    """Nudge the beats: ``{"shift": 0.25}`` (a fraction of a beat), or ``{"shift": null}``."""
+    run_id = _id(request, "run")
+    body = await body_fields(request, ["shift"])
+    shift = body["shift"]
+    if shift is not None:
+        shift = number(shift, "shift", -MAX_BEAT_SHIFT, MAX_BEAT_SHIFT)
+
+    def change(studio: Studio) -> dict[str, Any]:
+        studio.runs.set_beat_shift(run_id, shift)
+        return _run_json(studio, studio.runs.get(run_id))
+
+    return JSONResponse(await _worker(request).run(change))
+
+
 async def lineage(request: Request) -> JSONResponse:
     """A dancer and its ancestors, newest first, with rest poses to draw."""
     dancer = _id(request, "dancer")
@@ -287,6 +304,7 @@ routes: list[BaseRoute] = [
     Route("/api/runs/{run}/audio", run_audio),
     Route("/api/runs/{run}/song", change_song, methods=["POST"]),
     Route("/api/runs/{run}/bpm", set_bpm, methods=["POST"]),
+    Route("/api/runs/{run}/shift", set_beat_shift, methods=["POST"]),
     Route("/api/runs/{run}/generations/{generation}", generation),
     Route("/api/runs/{run}/generations/{generation}/breed", breed, methods=["POST"]),
     Route("/api/runs/{run}/generations/{generation}/sheet.png", sheet, methods=["POST"]),

@@ -46,11 +46,13 @@ MEDIA_TYPES = {
 
 
 def export_name(dancer: StageDancer, kind: str) -> str:
-    """``sinews-run3-gen5-dancer07-<digest>.<kind>``; the digest covers genome, seed and song."""
+    """``sinews-run3-gen5-dancer07-<digest>.<kind>``; the digest covers genome, seed, song and
+    its beats (tempo and beat shift)."""
     person = dancer.individual
     digest = hashlib.sha256(dancer.genome.values.tobytes())
     digest.update(f"{person.seed}|{dancer.music.song_hash}|{dancer.music.tempo_bpm!r}".encode())
     digest.update(f"{dancer.seconds!r}".encode())
+    digest.update(dancer.music.beats.tobytes())
     return (
         f"sinews-run{person.run_id}-gen{person.generation}-dancer{person.index:02d}"
         f"-{digest.hexdigest()[:10]}.{kind}"

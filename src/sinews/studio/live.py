@@ -71,6 +71,7 @@ class LiveDancer:
         self.frames = setup.n_steps + 1
         self._drive = setup.drive
         self._phase = setup.phase
+        self._pose = setup.pose
         self._mass = body.mass
         self._max_pull = MAX_PULL_G * float(body.mass.sum()) * DANCER_ENGINE.gravity
         self.state = self.batch.initial_state()
@@ -115,6 +116,7 @@ class LiveDancer:
             external=None if grab is None else self._pull(grab),
             drive=self._drive,
             phase=self._phase,
+            pose=self._pose,
             record=record,
             record_forces=record,
         )

@@ -114,7 +114,7 @@ class Motion:
     def generation(self, run_id: int, generation: int) -> bytes:
         """A generation as a pack: header with the dancers, positions (P, T, N, 2) int16 mm."""
         run = self.runs.get(run_id)
-        key = (run_id, generation, run.bpm)
+        key = (run_id, generation, run.bpm, run.beat_shift)
         return self._generations.get(key, lambda: self._generation(run_id, generation))
 
     def dance_generation(
@@ -159,7 +159,7 @@ class Motion:
     def stage(self, individual_id: int, genes: Mapping[str, float]) -> bytes:
         """The stage dancer as a pack: positions and forces (T, N, 2) float32, triggers (T, R)."""
         dancer = self.stage_dancer(individual_id, genes)
-        key = (individual_id, tuple(sorted(genes.items())), dancer.music.tempo_bpm)
+        key = (individual_id, tuple(sorted(genes.items())), dancer.music.beats.tobytes())
         return self._stage.get(key, lambda: _stage_pack(dancer))
 
     def lineage(self, individual_id: int) -> list[dict[str, Any]]:

@@ -1,4 +1,4 @@
-"""The studio's runs: dancer runs bred by picks — start, open, breed, branch, re-tempo.
+"""The studio's runs: dancer runs bred by picks — start, open, breed, branch, re-tempo, nudge.
 
 Everything goes through the dancer run kind (`sinews.experiments.dancers.run`,
 the same `RunKind` the CLI uses): the studio starts runs bred by hand
@@ -70,6 +70,7 @@ class StudioRun:
         id: the run's number.
         song: the song it dances to.
         bpm: the person's tempo correction, or None for the analysed tempo.
+        beat_shift: the person's nudge of the beats, a fraction of a beat (0: none).
         seconds: length of every dance in it.
         population: dancers per generation.
         last: its last generation.
@@ -79,6 +80,7 @@ class StudioRun:
     id: int
     song: Song
     bpm: float | None
+    beat_shift: float
     seconds: float
     population: int
     last: int
@@ -102,7 +104,7 @@ class StudioRuns:
         self.store = store
         self.songs = songs
         self.population = population
-        self._music: dict[tuple[int, float | None], tuple[MusicFeatures, Path]] = {}
+        self._music: dict[tuple[int, float | None, float], tuple[MusicFeatures, Path]] = {}
 
     def create(self, song: Song, *, seed: int | None = None) -> int:
         """Start a run on ``song`` with a random first generation; return its id."""
@@ -124,6 +126,7 @@ class StudioRuns:
             id=info.id,
             song=self.songs.of_run(info),
             bpm=_bpm(info),
+            beat_shift=_beat_shift(info),
             seconds=float(info.config["seconds"]),
             population=int(info.config["population"]),
             last=info.generations - 1,
@@ -165,12 +168,12 @@ class StudioRuns:
         return info
 
     def music(self, run_id: int) -> tuple[MusicFeatures, Path]:
-        """The run's analysed song (with its tempo correction) and its file.
+        """The run's analysed song (with its tempo correction and beat shift) and its file.
 
         Checked against the run's song hash on first use, then kept.
         """
         info = self.info(run_id)
-        key = (run_id, _bpm(info))
+        key = (run_id, _bpm(info), _beat_shift(info))
         if key not in self._music:
             self._music[key] = dancers.run_music(info)
         return self._music[key]
@@ -231,6 +234,14 @@ class StudioRuns:
         except SinewsError as exc:
             raise StudioError(str(exc)) from None
 
+    def set_beat_shift(self, run_id: int, fraction: float | None) -> None:
+        """Move a run's beats by ``fraction`` of a beat (None: back where the tracker put them)."""
+        self.info(run_id)
+        try:
+            dancers.set_beat_shift(self.store, run_id, fraction)
+        except SinewsError as exc:
+            raise StudioError(str(exc)) from None
+
 
 def _seconds(song: Song) -> float:
     """How long the studio dances to ``song``: all of it, up to `MAX_SECONDS`."""
@@ -270,3 +281,7 @@ def _picks(info: RunInfo) -> bool:
 def _bpm(info: RunInfo) -> float | None:
     value = info.config.get("bpm")
     return None if value is None else float(value)
+
+
+def _beat_shift(info: RunInfo) -> float:
+    return float(info.config.get("beat_shift") or 0.0)

@@ -40,11 +40,12 @@ from sinews.experiments.kinds import (
     run_of,
 )
 from sinews.experiments.run_config import EvolutionConfig
-from sinews.music.analysis import MAX_BPM, MIN_BPM, analyse_file
+from sinews.limits import check_number
+from sinews.music.analysis import MAX_BEAT_SHIFT, MAX_BPM, MIN_BPM, analyse_file, shift_beats
 from sinews.music.features import MusicFeatures
 from sinews.store import Individual, RunInfo, RunStore
 
-__all__ = ["GENOMES", "KIND", "DancerKind", "branch", "run_music", "set_tempo"]
+__all__ = ["GENOMES", "KIND", "DancerKind", "branch", "run_music", "set_beat_shift", "set_tempo"]
 
 GENOMES = GenomeSpace(size=DancerGenome.SIZE)
 """A dancer genome: `DancerGenome.SIZE` floats in [0, 1]."""
@@ -204,7 +205,8 @@ KIND = DancerKind()
 
 
 def run_music(info: RunInfo) -> tuple[MusicFeatures, Path]:
-    """The analysed song of a dancer run (at its corrected tempo, if it has one) and its file.
+    """The analysed song of a dancer run and its file, at the run's corrected tempo and
+    with its beats moved by the run's beat shift, if it has them.
 
     Raises:
         SinewsError: the song file changed since the run started.
@@ -216,7 +218,9 @@ def run_music(info: RunInfo) -> tuple[MusicFeatures, Path]:
     if music.song_hash != info.song_hash:
         raise SinewsError(f"{path}: the song has changed since run {info.id} started")
     bpm = info.config.get("bpm")
-    return (music if bpm is None else analyse_file(path, bpm=float(bpm))), path
+    if bpm is not None:
+        music = analyse_file(path, bpm=float(bpm))
+    return shift_beats(music, float(info.config.get("beat_shift") or 0.0)), path
 
 
 def set_tempo(store: RunStore, run_id: int, bpm: float | None) -> None:
@@ -226,6 +230,15 @@ def set_tempo(store: RunStore, run_id: int, bpm: float | None) -> None:
     if bpm is not None and not MIN_BPM <= bpm <= MAX_BPM:
         raise SinewsError(f"bpm must be in [{MIN_BPM:g}, {MAX_BPM:g}], got {bpm:g}")
     store.update_config(run_id, {**info.config, "bpm": bpm})
+
+
+def set_beat_shift(store: RunStore, run_id: int, fraction: float | None) -> None:
+    """Move a run's beats by ``fraction`` of a beat (None or 0: where the tracker put them)."""
+    info = store.run(run_id)
+    _check_kind(info)
+    if fraction is not None:
+        check_number("beat shift", fraction, -MAX_BEAT_SHIFT, MAX_BEAT_SHIFT)
+    store.update_config(run_id, {**info.config, "beat_shift": fraction or None})
 
 
 def branch(
@@ -258,7 +271,7 @@ def branch(
     path = song_path(song)
     music = analyse_file(path)
     length = min(float(info.config["seconds"]), music.duration) if seconds is None else seconds
-    config |= {"song": song, "seconds": length, "bpm": None}
+    config |= {"song": song, "seconds": length, "bpm": None, "beat_shift": None}
     return store.branch(
         run_id, generation, config=config, song_hash=music.song_hash, song_path=str(path)
     )

@@ -3,8 +3,9 @@
 A run file or options give ``song`` (``demo:groove`` or a path) and
 ``seconds`` beside `EvolutionConfig`'s keys; the song's file and SHA-256 go
 into the run's columns, so resuming or re-simulating can check the song is
-still the same. A run's tempo correction (``bpm``, set in the studio) is part
-of its settings too: every replay analyses the song at that tempo.
+still the same. A run's tempo correction (``bpm``) and beat shift (``beat_shift``, a
+fraction of a beat), both set in the studio, are part of its settings too: every replay
+analyses the song at that tempo and moves its beats by that shift.
 """
 
 from __future__ import annotations

@@ -10,6 +10,7 @@ import numpy as np
 import numpy.typing as npt
 
 from sinews.dancers import DANCER_ENGINE, DancerGenome, develop
+from sinews.dancers.groove import groove_signals
 from sinews.dancers.responders import beat_drive
 from sinews.errors import SinewsError
 from sinews.limits import MAX_SECONDS
@@ -44,12 +45,15 @@ class DanceSetup:
         drive: the music's band moves on the beat grid (frames, bands), or None
             (`sinews.dancers.responders.beat_drive`).
         phase: the music's two-beat phase (frames,), or None.
+        pose: the groove's signals (frames, 2), or None
+            (`sinews.dancers.groove.groove_signals`).
     """
 
     batch: BodyBatch
     n_steps: int
     drive: npt.NDArray[np.float32] | None
     phase: npt.NDArray[np.float32] | None
+    pose: npt.NDArray[np.float32] | None
 
 
 def prepare_dance(
@@ -75,11 +79,13 @@ def prepare_dance(
         raise SinewsError(f"the song was analysed at {music.fps:g} fps; dancers step at 60")
     n_steps = max(1, round(seconds / DANCER_ENGINE.dt))
     drive, phase = (None, None) if music is None else beat_drive(music)
+    pose = groove_signals(music) if music is not None and responders else None
     return DanceSetup(
         batch=BodyBatch.from_bodies(bodies, seeds=seeds),
         n_steps=n_steps,
         drive=drive,
         phase=phase,
+        pose=pose,
     )
 
 
@@ -99,7 +105,8 @@ def dance(
         seconds: length of the dance (default: the whole song).
         music: the analysed song their responders listen to; without it they
             move only by wiggle and home.
-        responders: False switches every responder off (to hear what the music adds).
+        responders: False switches every responder and the groove off (to hear what
+            the music adds).
         seeds: one wiggle-noise seed per dancer (default 0 for all); a dancer's
             motion depends only on its genome, its seed and the music.
         record_forces: keep per-node forces for the debug overlay.
@@ -117,6 +124,7 @@ def dance(
         DANCER_ENGINE,
         drive=setup.drive,
         phase=setup.phase,
+        pose=setup.pose,
         record_forces=record_forces,
     )
     assert recording is not None

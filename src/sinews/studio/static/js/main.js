@@ -31,7 +31,8 @@ class Studio {
     this.songs = new Songs(
       { select: $("song"), upload: $("upload"), tempo: $("tempo"), half: $("tempo-half"),
         double: $("tempo-double"), auto: $("tempo-auto"), form: $("tempo-form"),
-        bpm: $("tempo-bpm"), tap: $("tempo-tap") },
+        bpm: $("tempo-bpm"), tap: $("tempo-tap"), shift: $("beat-shift"),
+        earlier: $("shift-earlier"), later: $("shift-later") },
       this,
     );
     this.run = null;

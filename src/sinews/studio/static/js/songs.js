@@ -1,15 +1,20 @@
-// Songs: choose a demo or an uploaded song, upload your own, correct the tempo.
-// Another song means dancing on in a new run (a branch); the tempo is the run's.
+// Songs: choose a demo or an uploaded song, upload your own, correct the tempo, nudge
+// the beats. Another song means dancing on in a new run (a branch); tempo and nudge
+// are the run's.
 
 import { getJSON, postFile, postJSON, StudioError } from "./api.js";
 import { TapTempo } from "./tap.js";
 
 export const MIN_BPM = 40;
 export const MAX_BPM = 240;
+/** One nudge moves the beats this fraction of a beat; at most MAX_SHIFT either way. */
+export const SHIFT_STEP = 0.125;
+export const MAX_SHIFT = 0.5;
 
 export class Songs {
   /**
-   * @param {object} elements {select, upload, tempo, half, double, auto, form, bpm, tap}
+   * @param {object} elements {select, upload, tempo, half, double, auto, form, bpm, tap,
+   *   shift, earlier, later}
    * @param {object} app {run, maxUpload, busy(label, work), openRun(run), message(text)}
    */
   constructor(elements, app) {
@@ -29,6 +34,8 @@ export class Songs {
       (taps, bpm) => this.showTaps(taps, bpm),
     );
     elements.tap.addEventListener("click", () => this.tapper.tap());
+    elements.earlier.addEventListener("click", () => this.nudge(-SHIFT_STEP));
+    elements.later.addEventListener("click", () => this.nudge(SHIFT_STEP));
   }
 
   /** Fill the song list (and select the run's song). */
@@ -59,6 +66,21 @@ export class Songs {
     select.value = run.song.id;
     tempo.textContent = `${run.tempo.toFixed(1)} BPM${run.bpm ? " (set)" : ""}`;
     if (document.activeElement !== this.elements.bpm) this.elements.bpm.value = run.tempo.toFixed(1);
+    const eighths = Math.round(run.beatShift / SHIFT_STEP);
+    this.elements.shift.textContent =
+      eighths === 0 ? "beats ±0" : `beats ${eighths > 0 ? "+" : "−"}${Math.abs(eighths)}/8`;
+    this.elements.earlier.disabled = run.beatShift <= -MAX_SHIFT;
+    this.elements.later.disabled = run.beatShift >= MAX_SHIFT;
+  }
+
+  /** Move the run's beats by ``step`` of a beat (later if positive). */
+  async nudge(step) {
+    const run = this.app.run;
+    const shift = Math.max(-MAX_SHIFT, Math.min(MAX_SHIFT, run.beatShift + step));
+    await this.app.busy("Moving the beats…", async () => {
+      const changed = await postJSON(`/api/runs/${run.id}/shift`, { shift: shift || null });
+      await this.app.openRun(changed, this.app.generationNumber);
+    });
   }
 
   /** Dance on to another song from the generation on show. */
