@@ -19,6 +19,7 @@ from sinews.experiments.run_config import EvolutionConfig
 from sinews.studio.figure_runs import (
     CONTROLLERS,
     MAX_GENERATIONS,
+    MAX_SHOWN,
     PLANAR,
     POPULATIONS,
     FigureRun,
@@ -161,9 +162,9 @@ async def breed(request: Request) -> JSONResponse:
     run_id, number = _id(request, "run"), _id(request, "generation")
     body = await body_fields(request, ["picks"])
     picks = body["picks"]
-    if not isinstance(picks, list) or len(picks) > POPULATIONS.stop:
+    if not isinstance(picks, list) or len(picks) > MAX_SHOWN:
         raise RequestError("picks must be a list of individual indices")
-    chosen = [whole(p, "a pick", 0, POPULATIONS.stop - 1) for p in picks]
+    chosen = [whole(p, "a pick", 0, MAX_SHOWN - 1) for p in picks]
 
     def make(studio: Studio) -> dict[str, Any]:
         _writable(studio, run_id)
