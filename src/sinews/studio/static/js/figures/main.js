@@ -4,7 +4,7 @@
 
 import { getJSON, getPack, postJSON } from "../api.js";
 import { drawNet, prettyProgram } from "./panel.js";
-import { drawCross, fitView, planarDrawer } from "./planar.js";
+import { drawCross, planarDrawer, View } from "./planar.js";
 import { drawPlot } from "./plot.js";
 
 const $ = (id) => document.getElementById(id);
@@ -315,15 +315,19 @@ function formTasks() {
   drawFloor();
 }
 
-const FLOOR_BOX = [-0.5, -0.05, 3.5, 1.9];
+/** The form's floor: 5 m from just behind the start, the ground 30 px above the bottom. */
+function floorView(canvas) {
+  const scale = canvas.width / 5;
+  return new View(canvas.width, canvas.height, scale, -0.5, (canvas.height - 30) / scale);
+}
 
 function drawFloor() {
   const canvas = $("form-floor"), ctx = canvas.getContext("2d");
-  const v = fitView(canvas.width, canvas.height, FLOOR_BOX);
+  const v = floorView(canvas);
   ctx.fillStyle = "rgb(250,248,243)"; ctx.fillRect(0, 0, canvas.width, canvas.height);
   ctx.fillStyle = "rgb(232,228,219)"; ctx.fillRect(0, v.y(0), canvas.width, canvas.height - v.y(0));
   ctx.fillStyle = "rgb(120,114,104)"; ctx.font = "11px system-ui, sans-serif"; ctx.textAlign = "center";
-  for (let x = 0; x <= 3; x += 0.5) ctx.fillText(`${x} m`, v.x(x), v.y(0) + 14);
+  for (let x = 0; x <= 4; x += 0.5) ctx.fillText(`${x} m`, v.x(x), v.y(0) + 14);
   ctx.fillStyle = "rgb(46,139,87)"; ctx.fillRect(v.x(0) - 1, v.y(0) - 14, 2, 14);
   if ($("form-target-box").hidden) return;
   const x = Number($("form-target-x").value);
@@ -338,7 +342,7 @@ function drawFloor() {
 
 function floorClick(event) {
   const canvas = $("form-floor"), box = canvas.getBoundingClientRect();
-  const v = fitView(canvas.width, canvas.height, FLOOR_BOX);
+  const v = floorView(canvas);
   const [x, z] = v.world(((event.clientX - box.left) * canvas.width) / box.width,
     ((event.clientY - box.top) * canvas.height) / box.height);
   $("form-target-x").value = x.toFixed(2);
