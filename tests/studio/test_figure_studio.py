@@ -191,7 +191,7 @@ def test_studio_picks_are_stored_and_the_cli_resumes_bit_for_bit(
 
 
 def test_runs_started_in_the_page_evolve_in_the_background_as_the_cli_would(
-    figure_server: StudioServer, studio_env: dict[str, str], tmp_path: Path
+    figure_server: StudioServer, figure_db: Path, studio_env: dict[str, str], tmp_path: Path
 ) -> None:
     form = {"figure": "snake", "controller": "springnet", "population": 5, "generations": 2,
             "seconds": 0.5, "seed": 5}  # fmt: skip
@@ -214,8 +214,7 @@ def test_runs_started_in_the_page_evolve_in_the_background_as_the_cli_would(
     twin = tmp_path / "twin.db"
     sinews(twin, studio_env, "evolve", "snake", "--population", "5", "--generations", str(after),
            "--seconds", "0.5", "--seed", "5")  # fmt: skip
-    db = Path(figure_server.process.args[figure_server.process.args.index("--db") + 1])
-    assert stored(db, run) == stored(twin, 1)
+    assert stored(figure_db, run) == stored(twin, 1)
 
 
 def test_a_run_the_cli_is_making_is_read_only_in_the_page(
@@ -229,15 +228,17 @@ def test_a_run_the_cli_is_making_is_read_only_in_the_page(
         while True:
             runs = ok(figure_server, "/api/figures/session")["runs"]
             newest = runs[0]
-            if newest["kind"] == "springnet" and newest["figure"] == "snake" and (
-                newest["generations"] >= 2 and newest["status"] == "running"
+            if (
+                newest["kind"] == "springnet"
+                and newest["figure"] == "snake"
+                and (newest["generations"] >= 2 and newest["status"] == "running")
             ):
                 break
             time.sleep(0.2)
         shown = ok(figure_server, f"/api/figures/runs/{newest['id']}")
         assert shown["readOnly"] and shown["job"] is None
-        status, answer = call(figure_server, f"/api/figures/runs/{newest['id']}/generations/0/breed",
-                              {"picks": [0]})  # fmt: skip
+        breed = f"/api/figures/runs/{newest['id']}/generations/0/breed"
+        status, answer = call(figure_server, breed, {"picks": [0]})
         assert status == 409 and "running in another process" in answer["error"]
         assert call(figure_server, f"/api/figures/runs/{newest['id']}/evolve",
                     {"generations": 1})[0] == 409  # fmt: skip

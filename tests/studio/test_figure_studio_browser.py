@@ -60,7 +60,7 @@ def test_a_generation_is_a_grid_of_replays_picked_and_bred(
     assert page.evaluate("figures.frame") == page.evaluate("figures.drawer.frames - 1")
     drawn = page.evaluate(INK, ".cell canvas")
     assert all(d["ink"] > 200 for d in drawn), [d["ink"] for d in drawn]
-    assert len({d["picture"] for d in drawn}) >= len(set(fitness))  # another motion, another picture
+    assert len({d["picture"] for d in drawn}) >= len(set(fitness))  # other motion, other picture
     stage = page.evaluate(INK, "#stage")[0]
     assert stage["ink"] > 2000  # the lamp, its spring net, the distance arrow
     page.select_option("#sort", "index")
@@ -84,7 +84,7 @@ def test_a_generation_is_a_grid_of_replays_picked_and_bred(
     page.select_option("#generation", "1")
     page.wait_for_function(f"{LOADED} && figures.shown === 1")
     expect(page.locator(".cell.was-picked")).to_have_count(2)
-    picked = page.eval_on_selector_all(".cell.was-picked", "(c) => c.map((e) => Number(e.dataset.index))")
+    picked = page.eval_on_selector_all(".cell.was-picked", "(c) => c.map((e) => +e.dataset.index)")
     assert sorted(picked) == [3, 8]
 
 

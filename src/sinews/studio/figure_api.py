@@ -183,6 +183,5 @@ def figure_routes() -> list[BaseRoute]:
         Route("/api/figures/runs/{run}/evolve", evolve, methods=["POST"]),
         Route("/api/figures/runs/{run}/pause", pause, methods=["POST"]),
         Route("/api/figures/runs/{run}/generations/{generation}", generation),
-        Route("/api/figures/runs/{run}/generations/{generation}/breed", breed,
-              methods=["POST"]),  # fmt: skip
+        Route("/api/figures/runs/{run}/generations/{generation}/breed", breed, methods=["POST"]),
     ]

@@ -65,12 +65,11 @@ class FigureMotion:
         return self._packs.get(key, make)
 
 
-def _pack(
-    run_id: int, generation: int, replays: list[Replay], programs: list[str | None]
-) -> bytes:
+def _pack(run_id: int, generation: int, replays: list[Replay], programs: list[str | None]) -> bytes:
     figure = replays[0].figure
     geometry = FigureGeometry.of(figure)
-    poses = [geometry.poses(r.trajectory.qpos) for r in replays]
+    qpos = [np.asarray(r.trajectory.qpos) for r in replays]  # figures' trajectories carry it
+    poses = [geometry.poses(q) for q in qpos]
     first = replays[0].trajectory
     scene = replays[0].scene
     colors = default_colors(len(figure.body_names))
@@ -98,7 +97,7 @@ def _pack(
         "ax": np.stack([millimetres(p.ax) for p in poses]),
         "az": np.stack([millimetres(p.az) for p in poses]),
         "sites": np.stack([millimetres(p.sites) for p in poses]),
-        "root_x": np.stack([millimetres(np.asarray(r.trajectory.qpos)[:, 0]) for r in replays]),
+        "root_x": np.stack([millimetres(q[:, 0]) for q in qpos]),
     }
     if isinstance(replays[0].panel, NetPanel):
         arrays["net"] = np.stack([np.asarray(r.panel.positions, np.float32) for r in replays])

@@ -45,6 +45,7 @@ POPULATIONS = range(5, 26)
 MAX_SHOWN = POPULATIONS.stop - 1
 """Most individuals per generation the page shows (a run with more cannot be opened)."""
 MAX_GENERATIONS = 500
+GENERATIONS = range(1, MAX_GENERATIONS + 1)
 MAX_SECONDS = 20.0
 
 
@@ -105,8 +106,7 @@ def run_form(body: Mapping[str, Any]) -> tuple[RunKind, str, dict[str, Any]]:
         raise FigureRunError(f"GP has no task for the {figure}")
     options: dict[str, Any] = {
         "population": _whole(body.get("population", 20), "population", POPULATIONS),
-        "generations": _whole(body.get("generations", 1), "generations",
-                              range(1, MAX_GENERATIONS + 1)),  # fmt: skip
+        "generations": _whole(body.get("generations", 1), "generations", GENERATIONS),
         "seed": _whole(body.get("seed", 0), "seed", range(0, 2**31)),
     }
     if body.get("seconds") is not None:

@@ -85,7 +85,7 @@ function showRun() {
     select.replaceChildren(...[...Array(run.generations).keys()].map((g) => new Option(String(g), g)));
   }
   if (figures.shown !== null) select.value = String(figures.shown);
-  const target = job ? job.target : run.planned;
+  const target = job && job.running ? job.target : Math.max(run.planned, run.generations);
   $("progress").max = Math.max(1, target);
   $("progress").value = run.generations;
   let text = `${run.generations} / ${target} generations`;
@@ -431,7 +431,7 @@ $("new-run").addEventListener("submit", (event) => {
   attempt(async () => {
     const run = await postJSON("/api/figures/runs", formBody());
     $("new-run").hidden = true;
-    say(`run ${run.id} started: evolving ${run.planned} generations`);
+    say(`run ${run.id} started: evolving ${run.job.target} generations`);
     clearGrid();
     figures.shown = null;
     await refreshRunList(run.id);
