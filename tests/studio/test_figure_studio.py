@@ -114,6 +114,11 @@ def test_the_page_lists_cli_runs_and_sends_generations_as_pose_packs(
     travelled = np.abs(root[:, -1] - root[:, 0])
     assert np.allclose(travelled, [abs(p["distance"]) for p in people], atol=0.0011)  # mm
 
+    header, _ = decode_pack(ok(figure_server, "/api/figures/runs/1/timeline"))
+    line = header["individuals"]
+    assert header["generation"] == -1 and [p["generation"] for p in line] == [0, 1]
+    assert line[1]["fitness"] == max(p["fitness"] for p in people)  # each generation's best
+
     header, arrays = decode_pack(ok(figure_server, "/api/figures/runs/2/generations/0"))
     assert header["scene"]["cross"] == 1.0 and "net" not in arrays
     assert all(p["program"].startswith("(list") for p in header["individuals"])

@@ -17,10 +17,10 @@ from killed_runs import sinews_command
 from studio_helpers import INK, StudioServer
 
 DOCS = Path(__file__).resolve().parents[2] / "docs"
-SEEK = """(frame) => {
-  const seek = document.getElementById("seek");
-  seek.value = String(frame);
-  seek.dispatchEvent(new Event("input"));
+SEEK = """([id, value]) => {
+  const slider = document.getElementById(id);
+  slider.value = String(value);
+  slider.dispatchEvent(new Event("input"));
 }"""
 LOADED = "window.figures && figures.pack && !document.body.classList.contains('busy')"
 
@@ -56,7 +56,7 @@ def test_a_generation_is_a_grid_of_replays_picked_and_bred(
     fitness = page.evaluate("figures.order.map((i) => figures.pack.header.individuals[i].fitness)")
     assert fitness == sorted(fitness, reverse=True)  # sorted by fitness, best first
     page.click("#play")  # hold the last frame, where every lamp has ended up
-    page.evaluate(SEEK, 10_000)
+    page.evaluate(SEEK, ["seek", 10_000])
     assert page.evaluate("figures.frame") == page.evaluate("figures.drawer.frames - 1")
     drawn = page.evaluate(INK, ".cell canvas")
     assert all(d["ink"] > 200 for d in drawn), [d["ink"] for d in drawn]
@@ -86,6 +86,19 @@ def test_a_generation_is_a_grid_of_replays_picked_and_bred(
     expect(page.locator(".cell.was-picked")).to_have_count(2)
     picked = page.eval_on_selector_all(".cell.was-picked", "(c) => c.map((e) => +e.dataset.index)")
     assert sorted(picked) == [3, 8]
+
+    page.click("#play")  # hold the clock, so the timeline stays where it is put
+    page.click("#timeline")  # the learning timeline: the best of each generation on the stage
+    page.wait_for_function("figures.timeline !== null")
+    line = page.evaluate(
+        "figures.timeline.pack.header.individuals.map((p) => [p.generation, p.fitness])"
+    )
+    assert [g for g, _ in line] == [0, 1, 2]
+    best = page.evaluate("Math.max(...figures.pack.header.individuals.map((p) => p.fitness))")
+    assert line[1][1] == best  # generation 1 is on screen
+    page.evaluate(SEEK, ["timeline-seek", 2])
+    expect(page.locator("#stage-title")).to_contain_text("best of: generation 2")
+    assert page.evaluate(INK, "#stage")[0]["ink"] > 2000
 
 
 def test_a_gp_program_is_staged_and_picks_parent_the_next_generation(

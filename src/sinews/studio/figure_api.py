@@ -157,6 +157,13 @@ async def generation(request: Request) -> Response:
     return Response(pack, media_type=MEDIA_TYPE)
 
 
+async def timeline(request: Request) -> Response:
+    """The best of each generation, oldest first, as one pack (the run learning)."""
+    run_id = _id(request, "run")
+    pack = await _worker(request).run(lambda s: s.figure_motion.timeline(run_id))
+    return Response(pack, media_type=MEDIA_TYPE)
+
+
 async def breed(request: Request) -> JSONResponse:
     """Breed from picks in the last generation: ``{"picks": [indices]}``; answers the run."""
     run_id, number = _id(request, "run"), _id(request, "generation")
@@ -182,6 +189,7 @@ def figure_routes() -> list[BaseRoute]:
         Route("/api/figures/runs/{run}", show_run),
         Route("/api/figures/runs/{run}/evolve", evolve, methods=["POST"]),
         Route("/api/figures/runs/{run}/pause", pause, methods=["POST"]),
+        Route("/api/figures/runs/{run}/timeline", timeline),
         Route("/api/figures/runs/{run}/generations/{generation}", generation),
         Route("/api/figures/runs/{run}/generations/{generation}/breed", breed, methods=["POST"]),
     ]

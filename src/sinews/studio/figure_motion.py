@@ -23,7 +23,7 @@ from sinews.render.figure_geometry import FigureGeometry
 from sinews.render.figure_panel import NetPanel
 from sinews.render.style import default_colors
 from sinews.store import Individual
-from sinews.studio.figure_runs import FigureRunError, FigureRuns
+from sinews.studio.figure_runs import MAX_SHOWN, FigureRun, FigureRunError, FigureRuns
 from sinews.studio.motion import Recent
 from sinews.studio.pack import MILLIMETRES, encode_pack, millimetres
 
@@ -55,14 +55,33 @@ class FigureMotion:
         if not people:
             raise FigureRunError(f"run {run_id} has no generation {generation}")
         key = (run_id, generation, tuple(p.picked for p in people))
-        kind = run.kind
+        return self._packs.get(key, lambda: self._pack(run, people, generation))
 
-        def make() -> bytes:
-            replays = kind.replay(self.runs.store, people, record_hz=POSE_HZ)
-            programs = [kind.genome_text(p) for p in people]
-            return _pack(run_id, generation, replays, programs)
+    def timeline(self, run_id: int) -> bytes:
+        """The best of each generation (at most `MAX_SHOWN`, evenly spaced, the first and
+        the last among them) by stored fitness, as one pack (``generation`` -1), oldest first:
+        the run learning."""
+        run = self.runs.get(run_id)
+        store = self.runs.store
+        last = store.last_generation(run_id)
+        if last < 0:
+            raise FigureRunError(f"run {run_id} has no generation yet")
+        chosen = np.unique(np.linspace(0, last, min(last + 1, MAX_SHOWN)).round().astype(int))
+        table = store.scores(run_id)
+        bests = []
+        for generation in chosen.tolist():
+            rows = np.flatnonzero(table.generation == generation)
+            if len(rows):
+                best = rows[int(np.argmax(table.fitness[rows]))]
+                bests.append(store.individuals(run_id, generation)[int(table.index[best])])
+        if not bests:
+            raise FigureRunError(f"run {run_id} has no scored generation")
+        return self._packs.get((run_id, "timeline", last), lambda: self._pack(run, bests, -1))
 
-        return self._packs.get(key, make)
+    def _pack(self, run: FigureRun, people: list[Individual], generation: int) -> bytes:
+        replays = run.kind.replay(self.runs.store, people, record_hz=POSE_HZ)
+        programs = [run.kind.genome_text(p) for p in people]
+        return _pack(run.id, generation, replays, programs)
 
 
 def _pack(run_id: int, generation: int, replays: list[Replay], programs: list[str | None]) -> bytes:

@@ -21,6 +21,7 @@ const figures = {
   order: [],
   picks: new Set(),
   staged: 0,
+  timeline: null, // {pack, drawer, k}: the learning timeline on the stage, or null
   playing: true,
   clock: { start: performance.now(), at: 0 },
   frame: 0,
@@ -232,11 +233,24 @@ function updateBreedBar() {
 
 // -- the stage ----------------------------------------------------------------------------
 
+/** What the stage shows: a cell of the generation, or the timeline's current best. */
+function staged() {
+  const line = figures.timeline;
+  return line ? { pack: line.pack, drawer: line.drawer, i: line.k }
+    : { pack: figures.pack, drawer: figures.drawer, i: figures.staged };
+}
+
 function stage(i) {
   figures.staged = i;
-  const person = figures.pack.header.individuals[i];
+  if (figures.timeline) setTimeline(null);
   for (const cell of $("grid").children) cell.classList.toggle("staged", Number(cell.dataset.index) === i);
-  $("stage-title").textContent = `Stage: generation ${person.generation} #${person.index}`;
+  describe(figures.pack.header.individuals[i], "Stage");
+  stageView();
+  drawAll();
+}
+
+function describe(person, title) {
+  $("stage-title").textContent = `${title}: generation ${person.generation} #${person.index}`;
   const program = $("program");
   program.hidden = !person.program;
   program.textContent = person.program ? prettyProgram(person.program) : "";
@@ -245,16 +259,40 @@ function stage(i) {
     span.textContent = `${k} ${v === null ? "–" : v.toPrecision(4)}`;
     return span;
   }));
-  stageView();
-  drawAll();
 }
 
 function stageView() {
-  if (!figures.drawer) return;
-  const canvas = $("stage"), person = figures.pack.header.individuals[figures.staged];
+  const { pack, drawer, i } = staged();
+  if (!drawer) return;
+  const canvas = $("stage"), person = pack.header.individuals[i];
   const band = person.net ? Math.round(PANEL_SHARE * canvas.height) : 0;
-  figures.stageView = figures.drawer.view(figures.staged, canvas.width, canvas.height, band);
+  figures.stageView = drawer.view(i, canvas.width, canvas.height, band);
   figures.stageBand = band;
+}
+
+// -- the learning timeline: the best of each generation in turn ---------------------------
+
+function setTimeline(pack) {
+  figures.timeline = pack ? { pack, drawer: DRAWERS[pack.header.drawer](pack), k: 0 } : null;
+  $("timeline").setAttribute("aria-pressed", String(Boolean(pack)));
+  $("timeline-seek").hidden = !pack;
+  $("timeline-label").textContent = "";
+  if (pack) {
+    $("timeline-seek").max = String(pack.header.individuals.length - 1);
+    timelineAt(0);
+  } else if (figures.pack) {
+    describe(figures.pack.header.individuals[figures.staged], "Stage");
+    stageView();
+  }
+}
+
+function timelineAt(k) {
+  const line = figures.timeline, people = line.pack.header.individuals;
+  line.k = k;
+  $("timeline-seek").value = String(k);
+  $("timeline-label").textContent = `${k + 1} of ${people.length}`;
+  describe(people[k], "Learning timeline, best of");
+  stageView();
 }
 
 // -- playing ------------------------------------------------------------------------------
@@ -271,18 +309,23 @@ function drawAll() {
   const drawer = figures.drawer;
   if (!drawer) return;
   const t = currentFrame();
+  const line = figures.timeline;
+  if (line && figures.playing && t < figures.frame) { // a replay ended: the next generation's best
+    timelineAt((line.k + 1) % line.pack.header.individuals.length);
+  }
   figures.frame = t;
   document.body.dataset.frame = String(t);
   for (const cell of $("grid").children) {
     const i = Number(cell.dataset.index), canvas = cell.querySelector("canvas");
     drawer.draw(canvas.getContext("2d"), i, t, figures.views[i]);
   }
-  const canvas = $("stage"), ctx = canvas.getContext("2d"), i = figures.staged;
-  drawer.draw(ctx, i, t, figures.stageView);
-  const person = figures.pack.header.individuals[i];
+  const canvas = $("stage"), ctx = canvas.getContext("2d"), shown = staged();
+  const frame = Math.min(t, shown.drawer.frames - 1);
+  shown.drawer.draw(ctx, shown.i, frame, figures.stageView);
+  const person = shown.pack.header.individuals[shown.i];
   if (person.net) {
-    drawNet(ctx, person.net, figures.pack.arrays.net.data, i, t, drawer.frames,
-      figures.pack.header.jointColors, canvas.width, figures.stageBand);
+    drawNet(ctx, person.net, shown.pack.arrays.net.data, shown.i, frame, shown.drawer.frames,
+      shown.pack.header.jointColors, canvas.width, figures.stageBand);
   }
   $("seek").value = String(t);
   $("time").textContent = `${(t / drawer.fps).toFixed(1)} s`;
@@ -441,6 +484,12 @@ $("new-run").addEventListener("submit", (event) => {
     showRun();
   });
 });
+$("timeline").addEventListener("click", () => attempt(async () => {
+  if (figures.timeline) setTimeline(null);
+  else setTimeline(await getPack(`/api/figures/runs/${figures.run.id}/timeline`));
+  drawAll();
+}));
+$("timeline-seek").addEventListener("input", () => { timelineAt(Number($("timeline-seek").value)); drawAll(); });
 window.addEventListener("resize", () => sizeCanvases());
 
 attempt(start).then(() => {
