@@ -195,6 +195,34 @@ def test_studio_picks_are_stored_and_the_cli_resumes_bit_for_bit(
     assert shown["generations"] == 3 and not shown["readOnly"]
 
 
+def test_style_weights_change_from_the_next_generation_and_are_kept(
+    figure_server: StudioServer, figure_db: Path, studio_env: dict[str, str]
+) -> None:
+    before = ok(figure_server, "/api/figures/runs/2")
+    last = before["generations"]
+    body = {"weights": {"head": 6.0, "still": 0.0}, "phaseIn": [0, 0]}
+    changed = ok(figure_server, "/api/figures/runs/2/fitness", body)
+    weights = changed["fitness"]["weights"]
+    assert weights["head"] == 6.0 and weights["still"] == 0.0
+    assert changed["fitness"]["phase_in"] == {"start": 0, "full": 0}
+    assert changed["fitnessHistory"][-1] == {"until": last, "fitness": before["fitness"]}
+    sinews(figure_db, studio_env, "runs", "resume", "2", "--generations", str(last + 1))
+    header, _ = decode_pack(ok(figure_server, f"/api/figures/runs/2/generations/{last}"))
+    scored = [p for p in header["individuals"] if p["fitness"] is not None]
+    assert scored
+    for person in scored:  # the CLI scored the new generation with the new weights, in full
+        total = sum(weights[name] * value for name, value in person["terms"].items())
+        assert person["fitness"] == pytest.approx(total)
+    for bad, message in (
+        ({"weights": {"distance": 2.0}, "phaseIn": [0, 0]}, "it always counts in full"),
+        ({"weights": {"fly": 1.0}, "phaseIn": [0, 0]}, "no fitness term 'fly'"),
+        ({"weights": {}, "phaseIn": [3, 1]}, "start <= full"),
+        ({"weights": {"head": -1}, "phaseIn": [0, 0]}, "weight of head must be in"),
+    ):
+        status, answer = call(figure_server, "/api/figures/runs/2/fitness", bad)
+        assert status == 400 and message in answer["error"], answer
+
+
 def test_runs_started_in_the_page_evolve_in_the_background_as_the_cli_would(
     figure_server: StudioServer, figure_db: Path, studio_env: dict[str, str], tmp_path: Path
 ) -> None:
@@ -225,12 +253,13 @@ def test_runs_started_in_the_page_evolve_in_the_background_as_the_cli_would(
 def test_a_run_the_cli_is_making_is_read_only_in_the_page(
     figure_server: StudioServer, figure_db: Path, studio_env: dict[str, str]
 ) -> None:
-    command = [*sinews_command(), "evolve", "snake", "--population", "5", "--generations", "400",
-               "--seconds", "0.5", "--db", str(figure_db)]  # fmt: skip
+    command = [*sinews_command(), "evolve", "snake", "--population", "5", "--generations",
+               "100000", "--seconds", "0.5", "--db", str(figure_db)]  # fmt: skip
     cli = subprocess.Popen(command, env=studio_env, stdout=subprocess.DEVNULL,
                            stderr=subprocess.DEVNULL)  # fmt: skip
     try:
         while True:
+            assert cli.poll() is None, "the CLI run ended before the page saw it running"
             runs = ok(figure_server, "/api/figures/session")["runs"]
             newest = runs[0]
             if (

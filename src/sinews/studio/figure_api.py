@@ -14,6 +14,8 @@ from starlette.requests import Request
 from starlette.responses import JSONResponse, Response
 from starlette.routing import BaseRoute, Route
 
+from sinews.evolve import PhaseIn
+from sinews.experiments.evolution import retune_fitness
 from sinews.experiments.gp.run import TASKS
 from sinews.experiments.run_config import EvolutionConfig
 from sinews.studio.figure_runs import (
@@ -28,11 +30,13 @@ from sinews.studio.figure_runs import (
 )
 from sinews.studio.pack import MEDIA_TYPE
 from sinews.studio.service import Studio, Worker
-from sinews.studio.validate import RequestError, body_fields, parse_whole, whole
+from sinews.studio.validate import RequestError, body_fields, number, parse_whole, whole
 
 __all__ = ["figure_routes"]
 
 _ID = 2**62
+MAX_WEIGHT = 1000.0
+"""Largest style weight the sliders may set."""
 _FORM = ("figure", "controller", "task", "target", "population", "generations", "seconds", "seed")
 
 
@@ -62,6 +66,8 @@ def _run_json(studio: Studio, run: FigureRun) -> dict[str, Any]:
         "readOnly": info.status == "running" and not jobs.busy(run.id),
         "job": None if job is None else job.to_json(),
         "terms": list(config.fitness.names),
+        "fitness": config.fitness.to_dict(),
+        "fitnessHistory": info.config.get("fitness_history", []),
         "fitnessLabel": run.kind.fitness_label,
         "maxPicks": max_picks(run),
         "history": studio.figure_runs.history(run.id),
@@ -138,6 +144,30 @@ async def evolve(request: Request) -> JSONResponse:
     return JSONResponse(await _worker(request).run(start))
 
 
+async def fitness(request: Request) -> JSONResponse:
+    """Style weights and phase-in from the next generation on:
+    ``{"weights": {term: weight}, "phaseIn": [start, full]}``."""
+    run_id = _id(request, "run")
+    body = await body_fields(request, ["weights", "phaseIn"])
+    given = body["weights"]
+    if not isinstance(given, dict) or len(given) > 32:
+        raise RequestError("weights must map term names to numbers")
+    weights = {str(k): number(v, f"weight of {k}", 0.0, MAX_WEIGHT) for k, v in given.items()}
+    window = body["phaseIn"]
+    if not isinstance(window, list) or len(window) != 2:
+        raise RequestError("phaseIn must be [start, full]")
+    start, full = (whole(g, "phaseIn", 0, MAX_GENERATIONS) for g in window)
+    if start > full:
+        raise RequestError("phaseIn must have start <= full")
+
+    def change(studio: Studio) -> dict[str, Any]:
+        _writable(studio, run_id)
+        retune_fitness(studio.store, run_id, weights, PhaseIn(start, full))
+        return _run_json(studio, studio.figure_runs.get(run_id))
+
+    return JSONResponse(await _worker(request).run(change))
+
+
 async def pause(request: Request) -> JSONResponse:
     """Stop the run's background job after the generation it is making."""
     run_id = _id(request, "run")
@@ -189,6 +219,7 @@ def figure_routes() -> list[BaseRoute]:
         Route("/api/figures/runs/{run}", show_run),
         Route("/api/figures/runs/{run}/evolve", evolve, methods=["POST"]),
         Route("/api/figures/runs/{run}/pause", pause, methods=["POST"]),
+        Route("/api/figures/runs/{run}/fitness", fitness, methods=["POST"]),
         Route("/api/figures/runs/{run}/timeline", timeline),
         Route("/api/figures/runs/{run}/generations/{generation}", generation),
         Route("/api/figures/runs/{run}/generations/{generation}/breed", breed, methods=["POST"]),

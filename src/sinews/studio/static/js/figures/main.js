@@ -104,7 +104,32 @@ function showRun() {
     ...run.terms.map((term) => new Option(term, `term:${term}`)));
   sort.value = [...sort.options].some((o) => o.value === keep) ? keep : "fitness";
   drawPlot($("plot"), run.history, run.fitnessLabel, figures.shown);
+  showFitness();
   updateBreedBar();
+}
+
+/** The style-weight sliders and phase-in window, rebuilt when the run's spec changes. */
+function showFitness() {
+  const run = figures.run, spec = run.fitness, key = `${run.id} ${JSON.stringify(spec)}`;
+  if (figures.fitnessShown === key) return;
+  figures.fitnessShown = key;
+  const styles = Object.entries(spec.weights).filter(([name]) => name !== spec.main);
+  $("fitness-box").hidden = !styles.length;
+  $("weights").replaceChildren(...styles.map(([name, weight]) => {
+    const row = document.createElement("label"), slider = document.createElement("input");
+    const shown = document.createElement("output");
+    Object.assign(slider, { type: "range", min: "0", max: String(Math.max(1, 4 * weight)), value: String(weight) });
+    slider.step = String(Math.max(1, 4 * weight) / 100);
+    slider.dataset.term = name;
+    shown.textContent = weight.toFixed(2);
+    slider.addEventListener("input", () => { shown.textContent = Number(slider.value).toFixed(2); });
+    row.append(name, slider, shown);
+    return row;
+  }));
+  $("phase-start").value = String(spec.phase_in.start);
+  $("phase-full").value = String(spec.phase_in.full);
+  const changes = run.fitnessHistory.map((h) => h.until);
+  $("fitness-note").textContent = changes.length ? `changed before generation ${changes.join(", ")}` : "";
 }
 
 async function poll() {
@@ -484,6 +509,14 @@ $("new-run").addEventListener("submit", (event) => {
     showRun();
   });
 });
+$("apply-fitness").addEventListener("click", () => attempt(async () => {
+  const weights = {};
+  for (const slider of $("weights").querySelectorAll("input")) weights[slider.dataset.term] = Number(slider.value);
+  const phaseIn = [Number($("phase-start").value), Number($("phase-full").value)];
+  figures.run = await postJSON(`/api/figures/runs/${figures.run.id}/fitness`, { weights, phaseIn });
+  showRun();
+  say(`the new weights score generation ${figures.run.generations} on`);
+}));
 $("timeline").addEventListener("click", () => attempt(async () => {
   if (figures.timeline) setTimeline(null);
   else setTimeline(await getPack(`/api/figures/runs/${figures.run.id}/timeline`));
