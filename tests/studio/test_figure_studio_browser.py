@@ -119,6 +119,14 @@ def test_a_gp_program_is_staged_and_picks_parent_the_next_generation(
     crossed = [sorted(p) for p in parents if len(p) == 2]
     assert len(crossed) == 9  # 90 % crossover, every pair the two picks
     assert all(p == sorted(picks) for p in crossed)
+    page.click("#fitness-box summary")  # a style weight, from the next generation on
+    page.locator("#weights input[data-term='head']").fill("0")
+    page.fill("#phase-full", "4")
+    page.click("#apply-fitness")
+    page.wait_for_function("figures.run.fitnessHistory.length === 1")
+    spec = page.evaluate("figures.run.fitness")
+    assert spec["weights"]["head"] == 0 and spec["phase_in"]["full"] == 4
+    expect(page.locator("#fitness-note")).to_have_text("changed before generation 2")
     page.screenshot(path=shots / "figure-gp.png")
 
 
