@@ -161,6 +161,7 @@ def test_requests_are_checked_like_the_dancer_pages(figure_server: StudioServer)
         assert status == 400 and message in answer["error"], answer
 
 
+@pytest.mark.slow  # six CLI runs in subprocesses (the studio's run, resumed, and its twins)
 def test_studio_picks_are_stored_and_the_cli_resumes_bit_for_bit(
     figure_server: StudioServer,
     figure_db: Path,
