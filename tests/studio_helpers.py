@@ -30,6 +30,19 @@ DATA = Path(__file__).resolve().parent / "data"
 START_TIMEOUT = 90.0
 HOME = "http://127.0.0.1:8765"
 
+INK = """(selector) => [...document.querySelectorAll(selector)].map((canvas) => {
+  const data = canvas.getContext("2d").getImageData(0, 0, canvas.width, canvas.height).data;
+  const off = (k, [r, g, b]) => Math.abs(data[k] - r) + Math.abs(data[k + 1] - g)
+    + Math.abs(data[k + 2] - b);
+  let ink = 0;  // pixels that are neither paper nor ground
+  for (let k = 0; k < data.length; k += 4) {
+    if (off(k, [250, 248, 243]) > 80 && off(k, [232, 228, 219]) > 80) ink++;
+  }
+  return { ink, picture: canvas.toDataURL() };
+})"""
+"""JS: for each canvas matching a selector, its pixels that are neither paper nor ground
+("ink") and its picture as a data URL."""
+
 
 class StudioServer:
     """``sinews studio`` in a subprocess; ``url`` once it listens."""

@@ -192,8 +192,43 @@ def test_genomes_and_bad_checkpoints() -> None:
     state = json.loads(gp.to_bytes())
     gp.tell(np.zeros(20))
     told = json.loads(gp.to_bytes())
-    assert "fitness" in told and "picks" not in told  # what it takes, and only that
+    assert "fitness" in told and told["picks"] == []  # what it takes, and only that
     for broken in (b"not json", b"{}", json.dumps({**state, "population": ["(list"]}).encode(),
                    json.dumps({**told, "fitness": None}).encode()):  # fmt: skip
         with pytest.raises(StrategyError):
             GPStrategy.from_bytes(broken)
+
+
+def test_picks_parent_every_crossover_and_are_copied() -> None:
+    gp = _strategy(seed=3)
+    first = gp.ask()
+    gp.tell(_score(first), picks=[3, 7])
+    gp.ask()
+    parents = np.asarray(gp.parents)
+    crossed = parents[parents[:, 1] >= 0]
+    assert len(crossed) == 18  # 90 % of 20
+    assert set(crossed.ravel().tolist()) == {3, 7}
+    assert all(a != b for a, b in crossed.tolist())  # two distinct picks per crossover
+    assert parents[18:].tolist() == [[3, -1], [7, -1]]  # the picks are the copies
+
+
+def test_a_single_pick_is_crossed_with_tournament_winners() -> None:
+    gp = _strategy(seed=4)
+    gp.tell(_score(gp.ask()), picks=[5])
+    gp.ask()
+    parents = np.asarray(gp.parents)
+    crossed = parents[parents[:, 1] >= 0]
+    assert (crossed[::2, 0] == 5).all() and (crossed[1::2, 1] == 5).all()
+    assert parents[-2].tolist() == [5, -1]
+    assert len(set(crossed[::2, 1].tolist())) > 1  # mates differ: tournaments, not one winner
+
+
+def test_without_picks_a_checkpoint_restores_as_before() -> None:
+    """Checkpoints written before GP took picks (no "picks" key) still restore."""
+    gp = _strategy(seed=5)
+    gp.tell(_score(gp.ask()))
+    state = json.loads(gp.to_bytes())
+    del state["picks"]
+    restored = GPStrategy.from_bytes(json.dumps(state).encode())
+    assert restored.ask() == gp.ask()
+    np.testing.assert_array_equal(restored.parents, gp.parents)

@@ -15,18 +15,7 @@ import pytest
 from playwright.sync_api import expect
 
 from sinews.music import save_wav
-from studio_helpers import DATA, StudioServer
-
-INK = """(selector) => [...document.querySelectorAll(selector)].map((canvas) => {
-  const data = canvas.getContext("2d").getImageData(0, 0, canvas.width, canvas.height).data;
-  const off = (k, [r, g, b]) => Math.abs(data[k] - r) + Math.abs(data[k + 1] - g)
-    + Math.abs(data[k + 2] - b);
-  let ink = 0;  // pixels that are neither paper nor ground
-  for (let k = 0; k < data.length; k += 4) {
-    if (off(k, [250, 248, 243]) > 80 && off(k, [232, 228, 219]) > 80) ink++;
-  }
-  return { ink, picture: canvas.toDataURL() };
-})"""
+from studio_helpers import DATA, INK, StudioServer
 
 IDLE = "!document.body.classList.contains('busy')"
 

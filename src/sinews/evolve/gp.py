@@ -15,6 +15,13 @@ did not use mutation") and the rest reproduced copies, parents chosen by
 tournament or fitness-proportionately. ``elites`` best individuals may be
 copied first (0 in the paper).
 
+A person may steer it (the studio's hand picks, docs/figure-studio.md):
+told ``picks`` beside the fitness, the picks are the parents of every
+crossover (each pair two distinct picks drawn at random; a single pick is
+crossed with tournament winners) and are reproduced unchanged first; mutants
+and the remaining copies are topped up by fitness tournaments as usual.
+Without picks the breeding is exactly the paper's.
+
 Two departures keep populations from freezing on one early program (measured
 in docs/gp.md): a child over the `Limits` is drawn again at other points, not
 replaced by a copy of its parent (`within_limits`); and no program may stand
@@ -155,12 +162,12 @@ class GPStrategy(AskTell[list[Program]]):
 
     Attributes:
         name: ``"gp"`` in checkpoints.
-        takes: ``tell`` takes fitness only.
+        takes: ``tell`` takes fitness and (optionally) a person's picks.
         codec: the genome codec of `encode` and `genomes`.
     """
 
     name = "gp"
-    takes = ("fitness",)
+    takes = ("fitness", "picks")
     codec = GENOME_CODEC
 
     def __init__(
@@ -186,16 +193,17 @@ class GPStrategy(AskTell[list[Program]]):
         """The last population asked for."""
         return tuple(self._asked())
 
-    def tell(self, fitness: npt.ArrayLike) -> None:
+    def tell(self, fitness: npt.ArrayLike, picks: npt.ArrayLike = ()) -> None:
         """Judge the last population.
 
         Args:
             fitness: (P,) higher is better; NaN or -inf is the worst.
+            picks: (K,) indices a person picked: the parents of the next crossovers.
 
         Raises:
-            StrategyError: out of turn, wrong shape, not numbers, or +inf.
+            StrategyError: out of turn, wrong shape, not numbers, +inf, or bad picks.
         """
-        self._record_tell(fitness=fitness)
+        self._record_tell(fitness=fitness, picks=picks)
 
     def _first(self) -> list[Program]:
         low, high = self.variation.init_depth
@@ -220,7 +228,7 @@ class GPStrategy(AskTell[list[Program]]):
         children: list[Program] = [old[i] for i in elites]
         parents = [(int(i), -1) for i in elites]
         while len(children) < v.elites + n_cross:
-            i, j = (int(k) for k in self._select(2))
+            i, j = self._mates()
             pair = crossover(old[i], old[j], self.rng, any_slot=v.any_slot)
             for child, (first, second) in zip(pair, ((i, j), (j, i)), strict=True):
                 if len(children) < v.elites + n_cross:
@@ -231,10 +239,25 @@ class GPStrategy(AskTell[list[Program]]):
         for i in self._select(n_mutate).tolist():
             children.append(self._mutant(old[i]))
             parents.append((i, -1))
+        for i in self._picks.tolist()[: max(0, size - len(children))]:
+            children.append(old[i])
+            parents.append((i, -1))
         for i in self._select(size - len(children)).tolist():
             children.append(old[i])
             parents.append((i, -1))
         return self._diverse(children), np.array(parents, dtype=np.int64)
+
+    def _mates(self) -> tuple[int, int]:
+        """A crossover's two parents: by tournament, or two distinct picks (one pick and a
+        tournament winner when there is a single pick)."""
+        picks = self._picks
+        if len(picks) == 0:
+            i, j = (int(k) for k in self._select(2))
+            return i, j
+        if len(picks) == 1:
+            return int(picks[0]), int(self._select(1)[0])
+        i, j = self.rng.choice(len(picks), size=2, replace=False)
+        return int(picks[i]), int(picks[j])
 
     def _cross_within_limits(self, a: Program, b: Program) -> Program:
         """A child of ``a`` and ``b`` within the limits (see `within_limits`)."""

@@ -244,7 +244,9 @@ class AskTell(ABC, Generic[Population]):
             try:
                 self._record_tell(
                     fitness=None if fitness is None else decode_array(fitness, "fitness"),
-                    picks=np.array(state["picks"] if "picks" in self.takes else [], np.int64),
+                    picks=np.array(
+                        state.get("picks", []) if "picks" in self.takes else [], np.int64
+                    ),
                 )
             except (RuntimeError, ValueError) as exc:  # misuse in code, bad data in a file
                 raise StrategyError(f"checkpoint: {exc}") from None

@@ -32,6 +32,7 @@ from sinews.evolve import (
     AskTell,
     FitnessSpec,
     GenomeSpace,
+    PhaseIn,
     Strategy,
     individual_seeds,
     make_strategy,
@@ -51,6 +52,7 @@ __all__ = [
     "full_weight_bests",
     "full_weight_fitness",
     "record_picks",
+    "retune_fitness",
     "run_strategy",
 ]
 
@@ -323,6 +325,40 @@ def record_picks(
         raise SinewsError(f"run {run_id}: picks are for generation {last}, not {generation}")
     strategy = run_strategy(store, run_id, strategies=strategies)
     return advance(store, run_id, scorer=scorer, spec=spec, strategy=strategy, picks=picks)
+
+
+def retune_fitness(
+    store: RunStore, run_id: int, weights: Mapping[str, float], phase_in: PhaseIn
+) -> FitnessSpec:
+    """Change a run's style weights and phase-in window from its next generation on.
+
+    The run's config gets the new spec (every later generation is scored with
+    it, whether run on, picked or resumed); the spec it replaces is appended to
+    the config's ``fitness_history`` as ``{"until": g, "fitness": ...}`` (it
+    scored the generations before g), so the run's history keeps both.
+
+    Args:
+        store: the run store.
+        run_id: the run.
+        weights: new full weights of some of its style terms.
+        phase_in: the new phase-in window (generations).
+
+    Raises:
+        SinewsError: a term the run does not have, or the main goal's weight.
+    """
+    info = store.run(run_id)
+    old = dict(info.config)
+    spec = FitnessSpec.from_dict(old["fitness"])
+    for name in weights:
+        if name not in spec.weights:
+            raise SinewsError(f"run {run_id} has no fitness term {name!r}")
+        if name == spec.main:
+            raise SinewsError(f"{name} is the main goal: it always counts in full")
+    new = FitnessSpec(spec.main, {**spec.weights, **weights}, phase_in)
+    history = [*old.get("fitness_history", []),
+               {"until": info.generations, "fitness": spec.to_dict()}]  # fmt: skip
+    store.update_config(run_id, {**old, "fitness": new.to_dict(), "fitness_history": history})
+    return new
 
 
 def full_weight_fitness(

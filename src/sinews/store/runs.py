@@ -33,7 +33,7 @@ from sinews.store.records import (
     RunInfo,
     ScoreTable,
 )
-from sinews.store.schema import connect
+from sinews.store.schema import connect, hold, release
 
 __all__ = ["RunStore"]
 
@@ -71,6 +71,8 @@ class RunStore:
     ) -> None:
         self.path = Path(path) if path is not None else default_db_path()
         self._conn = connect(self.path, readonly=readonly)
+        hold(self.path)
+        self._held = True
 
     @property
     def root(self) -> Path:
@@ -80,6 +82,9 @@ class RunStore:
     def close(self) -> None:
         """Close the connection."""
         self._conn.close()
+        if self._held:
+            release(self.path)
+            self._held = False
 
     def __enter__(self) -> RunStore:
         return self

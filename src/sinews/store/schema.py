@@ -18,11 +18,13 @@ corrupts), foreign keys on, and explicit transactions (autocommit otherwise).
 from __future__ import annotations
 
 import sqlite3
+import threading
+from collections import Counter
 from pathlib import Path
 
 from sinews.store.errors import StoreError
 
-__all__ = ["APPLICATION_ID", "MIGRATIONS", "SCHEMA_VERSION", "connect"]
+__all__ = ["APPLICATION_ID", "MIGRATIONS", "SCHEMA_VERSION", "connect", "hold", "release"]
 
 APPLICATION_ID = 0x53494E57
 """``PRAGMA application_id`` of sinews databases ("SINW")."""
@@ -101,7 +103,8 @@ def connect(path: Path, *, readonly: bool = False) -> sqlite3.Connection:
             to another application, was written by a newer (or, read-only, an
             older) sinews, or cannot be opened.
     """
-    _check_header(path)
+    if not _in_use(path):
+        _check_header(path)
     if readonly:
         return _connect_readonly(path)
     try:
@@ -153,6 +156,35 @@ def _connect_readonly(path: Path) -> sqlite3.Connection:
             "a command that writes (e.g. sinews runs resume) upgrades it"
         )
     return conn
+
+
+_OPEN: Counter[Path] = Counter()
+"""Databases this process has open, by resolved path (see `hold`)."""
+_OPEN_LOCK = threading.Lock()
+
+
+def _in_use(path: Path) -> bool:
+    with _OPEN_LOCK:
+        return _OPEN[path.resolve()] > 0
+
+
+def hold(path: Path) -> None:
+    """Count ``path`` as open in this process (a `RunStore` opened it; `release` when closed).
+
+    A second connection to a database this process already has open skips the
+    header check: reading the header opens and closes the file, and closing any
+    descriptor of a file drops every POSIX lock the process holds on it, so the
+    first connection's SQLite locks would be lost and another process closing
+    the database last could delete the WAL under it.
+    """
+    with _OPEN_LOCK:
+        _OPEN[path.resolve()] += 1
+
+
+def release(path: Path) -> None:
+    """Undo one `hold`."""
+    with _OPEN_LOCK:
+        _OPEN[path.resolve()] -= 1
 
 
 def _check_header(path: Path) -> None:

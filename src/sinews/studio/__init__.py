@@ -10,6 +10,9 @@ a person picks favourites and breeds the next generation. Layout:
 - `live` and `live_socket` — the stage dancer stepped live while a node is dragged;
 - `scene_live` and `scene_socket` — the seed-000 scenes played live at 60 fps (the
   ``/scenes`` page);
+- `figure_runs`, `figure_motion`, `figure_jobs`, `figure_api` — the ``/figures`` page:
+  spring-net and GP figure runs shown as pose packs, picked, bred and evolved in the
+  background (docs/figure-studio.md);
 - `songs` — demo and uploaded songs, known by generated ids;
 - `exports` — genome JSON, GIF, MP4 with sound, contact sheets;
 - `pack` — the binary format motion travels in;

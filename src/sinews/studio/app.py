@@ -27,6 +27,7 @@ from starlette.types import ASGIApp, Receive, Scope, Send
 
 from sinews.errors import SinewsError
 from sinews.studio.api import routes
+from sinews.studio.figure_api import figure_routes
 from sinews.studio.scene_socket import scene_routes
 from sinews.studio.service import Worker
 from sinews.studio.validate import RequestError
@@ -37,7 +38,7 @@ STATIC = Path(__file__).parent / "static"
 _LOOPBACK = ["127.0.0.1", "localhost", "[::1]", "::1"]
 _WILDCARDS = frozenset({"0.0.0.0", "::", ""})
 _SAFE = frozenset({"GET", "HEAD", "OPTIONS"})
-_PAGES = frozenset({"/", "/scenes"})
+_PAGES = frozenset({"/", "/scenes", "/figures"})
 _log = logging.getLogger(__name__)
 
 
@@ -47,6 +48,10 @@ async def _page(request: Request) -> FileResponse:
 
 async def _scenes_page(request: Request) -> FileResponse:
     return FileResponse(STATIC / "scenes.html", headers={"Cache-Control": "no-cache"})
+
+
+async def _figures_page(request: Request) -> FileResponse:
+    return FileResponse(STATIC / "figures.html", headers={"Cache-Control": "no-cache"})
 
 
 class _SameOrigin:
@@ -132,7 +137,9 @@ def create_app(
         routes=[
             Route("/", _page),
             Route("/scenes", _scenes_page),
+            Route("/figures", _figures_page),
             *routes,
+            *figure_routes(),
             *scene_routes(),
             Mount("/static", StaticFiles(directory=STATIC), name="static"),
         ],

@@ -28,7 +28,7 @@ from sinews.studio.pack import MILLIMETRES, encode_pack, millimetres
 from sinews.studio.runs import StudioError, StudioRuns
 from sinews.trajectory import Trajectory
 
-__all__ = ["SLIDER_GENES", "Motion", "StageDancer"]
+__all__ = ["SLIDER_GENES", "Motion", "Recent", "StageDancer"]
 
 SLIDER_GENES = ("stiffness", "bulkiness", "lankiness", "torso_triangularity")
 """The main body genes the stage's sliders change."""
@@ -69,7 +69,7 @@ class StageDancer:
         return traj
 
 
-class _Recent:
+class Recent:
     """The last few results by key (a tiny LRU cache).
 
     Args:
@@ -108,8 +108,8 @@ class Motion:
 
     def __init__(self, runs: StudioRuns) -> None:
         self.runs = runs
-        self._generations = _Recent(6, GENERATIONS_KEPT)
-        self._stage = _Recent(4)
+        self._generations = Recent(6, GENERATIONS_KEPT)
+        self._stage = Recent(4)
 
     def generation(self, run_id: int, generation: int) -> bytes:
         """A generation as a pack: header with the dancers, positions (P, T, N, 2) int16 mm."""

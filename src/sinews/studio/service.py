@@ -18,6 +18,9 @@ from pathlib import Path
 from typing import TypeVar
 
 from sinews.store import RunStore
+from sinews.studio.figure_jobs import FigureJobs
+from sinews.studio.figure_motion import FigureMotion
+from sinews.studio.figure_runs import FigureRuns
 from sinews.studio.motion import Motion
 from sinews.studio.runs import StudioRuns
 from sinews.studio.songs import SongLibrary
@@ -50,7 +53,8 @@ class StudioSettings:
 
 
 class Studio:
-    """The studio's state (use it from one thread; see `Worker`).
+    """The studio's state (use it from one thread; see `Worker`): the dancer runs, and the
+    figure page's runs, motion and background jobs (which have a thread of their own).
 
     Args:
         settings: how the studio was started.
@@ -62,6 +66,9 @@ class Studio:
         self.songs = SongLibrary(settings.data_dir / "songs")
         self.runs = StudioRuns(self.store, self.songs, population=settings.population)
         self.motion = Motion(self.runs)
+        self.figure_runs = FigureRuns(self.store)
+        self.figure_motion = FigureMotion(self.figure_runs)
+        self.figure_jobs = FigureJobs(settings.db)
         self.exports = settings.data_dir / "exports"
         self.first_run = -1
 
@@ -88,7 +95,8 @@ class Studio:
         return self.first_run
 
     def close(self) -> None:
-        """Close the store."""
+        """Pause the figure jobs (waiting for the generation each is making), close the store."""
+        self.figure_jobs.close()
         self.store.close()
 
 

@@ -18,8 +18,13 @@ from typing import Any
 
 from sinews.control.gp import GENOME_CODEC
 from sinews.errors import SinewsError
-from sinews.evolve import Evaluator
-from sinews.experiments.evolution import GenerationSummary, Strategies, continue_run
+from sinews.evolve import Evaluator, SerialEvaluator
+from sinews.experiments.evolution import (
+    GenerationSummary,
+    Strategies,
+    continue_run,
+    record_picks,
+)
 from sinews.experiments.gp.score import GPScorer
 from sinews.experiments.gp.settings import GPSettings, Runtime
 from sinews.experiments.gp.simulate import measure_programs
@@ -200,8 +205,17 @@ class GPKind:
         evaluator: Evaluator | None = None,
         mutation: float | None = None,
     ) -> GenerationSummary:
-        """GP runs take no hand picks: `SinewsError`."""
-        raise SinewsError("GP runs are bred by fitness alone; they take no hand picks")
+        """``picks`` of ``generation`` (the last) parent the next one's crossovers (the rest by
+        fitness tournaments, see `sinews.evolve.gp`); breed and score it."""
+        if mutation is not None:
+            raise SinewsError("GP programs have no mutation strength to set")
+        info = store.run(run_id)
+        settings = _settings(info)
+        return record_picks(
+            store, run_id, generation, picks, strategies=Strategies(settings.genomes),
+            scorer=GPScorer(settings, evaluator or SerialEvaluator()),
+            spec=EvolutionConfig.from_dict(info.config).fitness,
+        )  # fmt: skip
 
     def replay(
         self,

@@ -1,0 +1,212 @@
+"""The figure page's runs: spring-net and GP runs of the planar figures, through `RunKind`.
+
+Every figure run in the store is listed, however it was made (``sinews evolve
+luxo`` or the page); one is opened if it is small enough to show as a grid
+(`MAX_SHOWN`). New runs are made from the page's form by the kind's own
+`RunKind.create_run` (the same checks as the CLI's), and hand picks go to
+`RunKind.pick`, which stores them with the generation they bred, so
+``sinews runs resume RUN`` continues a run bit for bit after a studio session.
+
+A run that is ``running`` but not by this studio (`FigureJobs`) belongs to
+another process (the CLI): the page shows it read-only and polls it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from sinews.errors import SinewsError
+from sinews.evolve import SerialEvaluator
+from sinews.experiments.gp.run import TASKS
+from sinews.experiments.kinds import RunKind, kind_of, run_kind
+from sinews.store import RunInfo, RunStore
+
+__all__ = [
+    "CONTROLLERS",
+    "MAX_SHOWN",
+    "PLANAR",
+    "POPULATIONS",
+    "FigureRun",
+    "FigureRuns",
+    "max_picks",
+    "run_form",
+]
+
+PLANAR = ("luxo", "snake", "humanoid")
+"""The figures the page draws (the 3D ones need a 3D cell drawer)."""
+CONTROLLERS = ("springnet", "gp")
+"""The run kinds the page opens."""
+POPULATIONS = range(5, 26)
+"""Individuals per generation the page offers (a grid of at most 25)."""
+MAX_SHOWN = POPULATIONS.stop - 1
+"""Most individuals per generation the page shows (a run with more cannot be opened)."""
+MAX_GENERATIONS = 500
+GENERATIONS = range(1, MAX_GENERATIONS + 1)
+MAX_SECONDS = 20.0
+
+
+class FigureRunError(SinewsError):
+    """A request about a run the figure page cannot carry out."""
+
+
+@dataclass(frozen=True)
+class FigureRun:
+    """A stored figure run as the page sees it.
+
+    Attributes:
+        info: the stored run.
+        kind: its run kind (``springnet`` or ``gp``).
+        figure: the figure's name.
+    """
+
+    info: RunInfo
+    kind: RunKind
+    figure: str
+
+    @property
+    def id(self) -> int:
+        """The run's number."""
+        return self.info.id
+
+    @property
+    def population(self) -> int:
+        """Individuals per generation."""
+        return int(self.info.config["population"])
+
+
+def max_picks(run: FigureRun) -> int:
+    """The most picks one generation takes: n/5 for Alton's GA, otherwise half the population."""
+    strategy = run.info.config.get("strategy") or {}
+    if strategy.get("name") == "alton":
+        return run.population // 5
+    return max(1, run.population // 2)
+
+
+def run_form(body: Mapping[str, Any]) -> tuple[RunKind, str, dict[str, Any]]:
+    """The kind, figure and ``create_run`` options of the page's new-run form.
+
+    Args:
+        body: ``figure``, ``controller``, and optionally ``task``, ``target``
+            (metres: a number, or [x, z] for the humanoid), ``population``,
+            ``generations``, ``seconds``, ``seed``.
+
+    Raises:
+        FigureRunError: a figure or controller the page does not offer, a number out of range.
+    """
+    figure, controller = body.get("figure"), body.get("controller")
+    if figure not in PLANAR:
+        raise FigureRunError(f"figure must be one of {', '.join(PLANAR)}")
+    if controller not in CONTROLLERS:
+        raise FigureRunError(f"controller must be one of {', '.join(CONTROLLERS)}")
+    if controller == "gp" and figure not in TASKS:
+        raise FigureRunError(f"GP has no task for the {figure}")
+    options: dict[str, Any] = {
+        "population": _whole(body.get("population", 20), "population", POPULATIONS),
+        "generations": _whole(body.get("generations", 1), "generations", GENERATIONS),
+        "seed": _whole(body.get("seed", 0), "seed", range(0, 2**31)),
+    }
+    if body.get("seconds") is not None:
+        options["seconds"] = _number(body["seconds"], "seconds", 0.1, MAX_SECONDS)
+    if controller == "gp":
+        options["task"] = body.get("task")
+        target = body.get("target")
+        if target is not None:
+            values = target if isinstance(target, list) else [target]
+            if not 1 <= len(values) <= 2:
+                raise FigureRunError("target must be x, or [x, z], in metres")
+            options["target"] = ",".join(repr(_number(v, "target", -10.0, 10.0)) for v in values)
+    elif body.get("task") is not None or body.get("target") is not None:
+        raise FigureRunError("spring nets have no task or target: they travel as far as they can")
+    return run_kind(controller), figure, options
+
+
+class FigureRuns:
+    """The figure runs of one store (use from one thread).
+
+    Args:
+        store: the run store.
+    """
+
+    def __init__(self, store: RunStore) -> None:
+        self.store = store
+
+    def get(self, run_id: int) -> FigureRun:
+        """A figure run the page can show; `FigureRunError` otherwise."""
+        info = self.store.run(run_id)
+        controller, _, figure = info.kind.partition("-")
+        if controller not in CONTROLLERS:
+            raise FigureRunError(f"run {run_id} evolves {info.kind}; this page shows figures")
+        if figure not in PLANAR:
+            raise FigureRunError(f"run {run_id} is a 3D figure ({figure}); the page draws "
+                                 "planar figures")  # fmt: skip
+        if int(info.config["population"]) > MAX_SHOWN:
+            raise FigureRunError(f"run {run_id} has more individuals than the page shows "
+                                 f"({MAX_SHOWN})")  # fmt: skip
+        return FigureRun(info=info, kind=kind_of(info), figure=figure)
+
+    def all(self) -> list[FigureRun]:
+        """Every figure run the page can show, newest first."""
+        found = []
+        for info in reversed(self.store.runs()):
+            try:
+                found.append(self.get(info.id))
+            except SinewsError:
+                continue
+        return found
+
+    def create(self, body: Mapping[str, Any]) -> int:
+        """Record a new run from the page's form (no generation yet); return its id."""
+        kind, figure, options = run_form(body)
+        return kind.create_run(self.store, subject=figure, file_values={}, options=options)
+
+    def pick(self, run_id: int, generation: int, picks: list[int]) -> int:
+        """Store ``picks`` in ``generation`` (the last) and breed and score the next.
+
+        Returns:
+            The new generation's number.
+        """
+        run = self.get(run_id)
+        last = run.info.generations - 1
+        if generation != last:
+            raise FigureRunError(f"run {run_id}: pick in its last generation ({last})")
+        most = max_picks(run)
+        if not 1 <= len(picks) <= most:
+            raise FigureRunError(f"pick 1 to {most} individuals")
+        if len(set(picks)) != len(picks) or not all(0 <= p < run.population for p in picks):
+            raise FigureRunError(f"picks must be distinct individuals 0–{run.population - 1}")
+        summary = run.kind.pick(self.store, run_id, generation, list(picks),
+                                evaluator=SerialEvaluator())  # fmt: skip
+        return summary.generation
+
+    def history(self, run_id: int) -> list[dict[str, Any]]:
+        """Per scored generation: its number, best and mean fitness (over those not failed)."""
+        table = self.store.scores(run_id)
+        fitness = np.asarray(table.fitness, dtype=np.float64)
+        failed = np.asarray(table.failed, dtype=bool)
+        found = []
+        for generation in np.unique(table.generation).tolist():
+            rows = (np.asarray(table.generation) == generation) & ~failed & np.isfinite(fitness)
+            values = fitness[rows]
+            found.append({
+                "generation": int(generation),
+                "best": float(values.max()) if len(values) else None,
+                "mean": float(values.mean()) if len(values) else None,
+            })  # fmt: skip
+        return found
+
+
+def _whole(value: object, name: str, allowed: range) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or value not in allowed:
+        raise FigureRunError(f"{name} must be a whole number from {allowed.start} to "
+                             f"{allowed.stop - 1}")  # fmt: skip
+    return value
+
+
+def _number(value: object, name: str, lo: float, hi: float) -> float:
+    if isinstance(value, bool) or not isinstance(value, int | float) or not lo <= value <= hi:
+        raise FigureRunError(f"{name} must be a number from {lo:g} to {hi:g}")
+    return float(value)

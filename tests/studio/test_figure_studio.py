@@ -1,0 +1,287 @@
+"""The figure page's API on a real ``sinews studio`` server: runs made by the CLI and by the
+page, packs of poses, picks, background evolution, and resuming bit for bit afterwards."""
+
+from __future__ import annotations
+
+import json
+import signal
+import subprocess
+import time
+import urllib.error
+import urllib.request
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from killed_runs import sinews_command
+from sinews.store import RunStore
+from studio_helpers import StudioServer, decode_pack
+
+SPRINGNET = ["luxo", "--population", "10", "--generations", "2", "--seconds", "1", "--seed", "3"]
+GP = ["luxo", "--controller", "gp", "--task", "hop", "--population", "10", "--generations", "1",
+      "--seconds", "1", "--seed", "4"]  # fmt: skip
+
+
+def sinews(db: Path, env: dict[str, str], *args: str) -> subprocess.CompletedProcess[str]:
+    """The installed ``sinews`` on ``db``; fails the test unless it exits 0."""
+    done = subprocess.run([*sinews_command(), *args, "--db", str(db)], env=env,
+                          capture_output=True, text=True, timeout=600)  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    return done
+
+
+def call(server: StudioServer, path: str, body: object = None, **headers: str) -> tuple[int, Any]:
+    """GET (or POST ``body`` as JSON) ``path``; (status, JSON or bytes)."""
+    data = None if body is None else json.dumps(body).encode()
+    if body is not None:
+        headers = {"Content-Type": "application/json", **headers}
+    request = urllib.request.Request(server.url.rstrip("/") + path, data=data, headers=headers)
+    try:
+        with urllib.request.urlopen(request, timeout=300) as answer:
+            raw, status, kind = answer.read(), answer.status, answer.headers["Content-Type"]
+    except urllib.error.HTTPError as error:
+        raw, status, kind = error.read(), error.code, error.headers["Content-Type"]
+    return status, json.loads(raw) if kind == "application/json" else raw
+
+
+def ok(server: StudioServer, path: str, body: object = None) -> Any:
+    status, answer = call(server, path, body)
+    assert status == 200, answer
+    return answer
+
+
+def settled(server: StudioServer, run: int) -> dict[str, Any]:
+    """The run once its background job has ended."""
+    while True:
+        shown = ok(server, f"/api/figures/runs/{run}")
+        if not (shown["job"] and shown["job"]["running"]):
+            return shown
+        time.sleep(0.2)
+
+
+def stored(db: Path, run: int) -> list[tuple[int, int, Any, float | None, bool]]:
+    """Every individual of a run: generation, index, genome, fitness, picked."""
+    with RunStore(db) as store:
+        return [
+            (p.generation, p.index,
+             p.genome.tolist() if isinstance(p.genome, np.ndarray) else p.genome,
+             p.fitness, p.picked)
+            for p in store.individuals(run)
+        ]  # fmt: skip
+
+
+@pytest.fixture(scope="module")
+def figure_db(tmp_path_factory: pytest.TempPathFactory, studio_env: dict[str, str]) -> Path:
+    """A database with a spring-net run (1) and a GP run (2) of the lamp, made by the CLI."""
+    db = tmp_path_factory.mktemp("figures") / "studio.db"
+    sinews(db, studio_env, "evolve", *SPRINGNET)
+    sinews(db, studio_env, "evolve", *GP)
+    return db
+
+
+@pytest.fixture(scope="module")
+def figure_server(figure_db: Path, studio_env: dict[str, str]) -> Iterator[StudioServer]:
+    studio = StudioServer(figure_db, studio_env)
+    yield studio
+    studio.stop()
+
+
+def test_the_page_lists_cli_runs_and_sends_generations_as_pose_packs(
+    figure_server: StudioServer,
+) -> None:
+    status, page = call(figure_server, "/figures")
+    assert status == 200 and b"figures/main.js" in page
+    session = ok(figure_server, "/api/figures/session")
+    assert [(r["id"], r["kind"]) for r in session["runs"][:2]] == [(2, "gp"), (1, "springnet")]
+    assert session["tasks"]["luxo"] == ["hop", "limbo"] and "snake" not in session["tasks"]
+
+    header, arrays = decode_pack(ok(figure_server, "/api/figures/runs/1/generations/1"))
+    assert header["drawer"] == "planar" and header["figure"] == "luxo" and header["fps"] == 50
+    frames, geoms = header["frames"], len(header["geoms"]["kinds"])
+    assert frames == 51 and geoms == 4
+    for name in ("centers", "ax", "az"):
+        assert arrays[name].shape == (10, frames, geoms, 2) and arrays[name].dtype == np.int16
+    assert arrays["net"].shape[:2] == (10, frames) and header["scene"] is None
+    people = header["individuals"]
+    assert [p["index"] for p in people] == list(range(10))
+    assert all(p["fitness"] == pytest.approx(abs(p["distance"]), abs=1e-9) for p in people)
+    axes = np.linalg.norm(arrays["az"].astype(float) / 1000, axis=-1)
+    assert np.allclose(axes, 1.0, atol=0.003)  # unit axes in thousandths
+    root = arrays["root_x"].astype(float) / 1000
+    travelled = np.abs(root[:, -1] - root[:, 0])
+    assert np.allclose(travelled, [abs(p["distance"]) for p in people], atol=0.0011)  # mm
+
+    header, _ = decode_pack(ok(figure_server, "/api/figures/runs/1/timeline"))
+    line = header["individuals"]
+    assert header["generation"] == -1 and [p["generation"] for p in line] == [0, 1]
+    assert line[1]["fitness"] == max(p["fitness"] for p in people)  # each generation's best
+
+    header, arrays = decode_pack(ok(figure_server, "/api/figures/runs/2/generations/0"))
+    assert header["scene"]["cross"] == 1.0 and "net" not in arrays
+    assert all(p["program"].startswith("(list") for p in header["individuals"])
+    assert set(header["individuals"][0]["terms"]) >= {"distance", "head", "fallen"}
+
+
+def test_requests_are_checked_like_the_dancer_pages(figure_server: StudioServer) -> None:
+    breed = "/api/figures/runs/1/generations/1/breed"
+    assert call(figure_server, breed, {"picks": [0]}, Origin="http://evil.example")[0] == 403
+    assert call(figure_server, breed, {"picks": [0]}, Host="evil.example")[0] == 400
+    assert call(figure_server, breed)[0] == 405  # a GET cannot breed
+    request = urllib.request.Request(figure_server.url + "api/figures/runs/1/pause", data=b"{}")
+    with pytest.raises(urllib.error.HTTPError) as refused:
+        urllib.request.urlopen(request, timeout=30)
+    assert refused.value.code == 415  # not sent as JSON
+    for body, message in (
+        ({"picks": [0], "path": "/etc/passwd"}, "unknown field 'path'"),
+        ({"picks": "0"}, "picks must be a list"),
+        ({"picks": [0, 1, 2]}, "pick 1 to 2 individuals"),  # Alton's GA keeps at most n/5
+        ({"picks": [12]}, "picks must be distinct individuals 0–9"),
+        ({"picks": [99]}, "a pick must be in [0, 24]"),
+    ):
+        status, answer = call(figure_server, breed, body)
+        assert status == 400 and message in answer["error"] and "\n" not in answer["error"]
+    assert call(figure_server, "/api/figures/runs/1/generations/0/breed", {"picks": [0]})[1] == {
+        "error": "run 1: pick in its last generation (1)"
+    }
+    dancers = figure_server.run_id  # the dancer run the studio opened
+    status, answer = call(figure_server, f"/api/figures/runs/{dancers}")
+    assert status == 400 and "this page shows figures" in answer["error"]
+    bad_forms = (
+        ({"figure": "luxo3d", "controller": "gp"}, "figure must be one of"),
+        ({"figure": "snake", "controller": "gp"}, "GP has no task for the snake"),
+        ({"figure": "luxo", "controller": "springnet", "population": 26}, "population must"),
+        ({"figure": "luxo", "controller": "gp", "task": "fly"}, "no luxo task 'fly'"),
+        ({"figure": "luxo", "controller": "springnet", "target": 2}, "spring nets have no task"),
+    )
+    for form, message in bad_forms:
+        status, answer = call(figure_server, "/api/figures/runs", form)
+        assert status == 400 and message in answer["error"], answer
+
+
+@pytest.mark.slow  # six CLI runs in subprocesses (the studio's run, resumed, and its twins)
+def test_studio_picks_are_stored_and_the_cli_resumes_bit_for_bit(
+    figure_server: StudioServer,
+    figure_db: Path,
+    studio_env: dict[str, str],
+    tmp_path: Path,
+) -> None:
+    """Picks made in the page, then ``sinews runs resume``: the same run as one made with the
+    picks written down beforehand (spring nets: ``--keep``; GP: `RunKind.pick` in process)."""
+    run = ok(figure_server, "/api/figures/runs/1/generations/1/breed", {"picks": [7, 2]})
+    assert run["generations"] == 3 and len(run["history"]) == 3
+    header, _ = decode_pack(ok(figure_server, "/api/figures/runs/1/generations/1"))
+    assert [p["index"] for p in header["individuals"] if p["picked"]] == [2, 7]
+    gp = ok(figure_server, "/api/figures/runs/2/generations/0/breed", {"picks": [1, 4, 6]})
+    assert gp["generations"] == 2
+    sinews(figure_db, studio_env, "runs", "resume", "1", "--generations", "4")
+    sinews(figure_db, studio_env, "runs", "resume", "2", "--generations", "3")
+
+    twin = tmp_path / "twin.db"
+    keep = tmp_path / "keep.txt"
+    keep.write_text("1: 7 2\n")
+    sinews(twin, studio_env, "evolve", *SPRINGNET[:4], "4", *SPRINGNET[5:], "--keep", str(keep))
+    assert stored(figure_db, 1) == stored(twin, 1)
+    sinews(twin, studio_env, "evolve", *GP)
+    from sinews.evolve import SerialEvaluator
+    from sinews.experiments.kinds import run_kind
+
+    with RunStore(twin) as store:
+        run_kind("gp").pick(store, 2, 0, [1, 4, 6])
+        run_kind("gp").run(store, 2, evaluator=SerialEvaluator(), generations=3)
+    assert stored(figure_db, 2) == stored(twin, 2)
+    shown = ok(figure_server, "/api/figures/runs/2")
+    assert shown["generations"] == 3 and not shown["readOnly"]
+
+
+def test_style_weights_change_from_the_next_generation_and_are_kept(
+    figure_server: StudioServer, figure_db: Path, studio_env: dict[str, str]
+) -> None:
+    before = ok(figure_server, "/api/figures/runs/2")
+    last = before["generations"]
+    body = {"weights": {"head": 6.0, "still": 0.0}, "phaseIn": [0, 0]}
+    changed = ok(figure_server, "/api/figures/runs/2/fitness", body)
+    weights = changed["fitness"]["weights"]
+    assert weights["head"] == 6.0 and weights["still"] == 0.0
+    assert changed["fitness"]["phase_in"] == {"start": 0, "full": 0}
+    assert changed["fitnessHistory"][-1] == {"until": last, "fitness": before["fitness"]}
+    sinews(figure_db, studio_env, "runs", "resume", "2", "--generations", str(last + 1))
+    header, _ = decode_pack(ok(figure_server, f"/api/figures/runs/2/generations/{last}"))
+    scored = [p for p in header["individuals"] if p["fitness"] is not None]
+    assert scored
+    for person in scored:  # the CLI scored the new generation with the new weights, in full
+        total = sum(weights[name] * value for name, value in person["terms"].items())
+        assert person["fitness"] == pytest.approx(total)
+    for bad, message in (
+        ({"weights": {"distance": 2.0}, "phaseIn": [0, 0]}, "it always counts in full"),
+        ({"weights": {"fly": 1.0}, "phaseIn": [0, 0]}, "no fitness term 'fly'"),
+        ({"weights": {}, "phaseIn": [3, 1]}, "start <= full"),
+        ({"weights": {"head": -1}, "phaseIn": [0, 0]}, "weight of head must be in"),
+    ):
+        status, answer = call(figure_server, "/api/figures/runs/2/fitness", bad)
+        assert status == 400 and message in answer["error"], answer
+
+
+def test_runs_started_in_the_page_evolve_in_the_background_as_the_cli_would(
+    figure_server: StudioServer, figure_db: Path, studio_env: dict[str, str], tmp_path: Path
+) -> None:
+    form = {"figure": "snake", "controller": "springnet", "population": 5, "generations": 2,
+            "seconds": 0.5, "seed": 5}  # fmt: skip
+    started = ok(figure_server, "/api/figures/runs", form)
+    run = started["id"]
+    assert started["job"]["target"] == 2
+    done = settled(figure_server, run)
+    assert done["generations"] == 2 and [g["generation"] for g in done["history"]] == [0, 1]
+    assert done["job"]["error"] is None and done["status"] == "finished"
+    more = ok(figure_server, f"/api/figures/runs/{run}/evolve", {"generations": 2})
+    assert more["job"]["target"] == 4
+    assert settled(figure_server, run)["generations"] == 4
+
+    ok(figure_server, f"/api/figures/runs/{run}/evolve", {"generations": 50})
+    paused = ok(figure_server, f"/api/figures/runs/{run}/pause", {})
+    assert paused["job"]["pausing"]
+    after = settled(figure_server, run)["generations"]
+    assert 4 <= after < 54
+
+    twin = tmp_path / "twin.db"
+    sinews(twin, studio_env, "evolve", "snake", "--population", "5", "--generations", str(after),
+           "--seconds", "0.5", "--seed", "5")  # fmt: skip
+    assert stored(figure_db, run) == stored(twin, 1)
+
+
+def test_a_run_the_cli_is_making_is_read_only_in_the_page(
+    figure_server: StudioServer, figure_db: Path, studio_env: dict[str, str]
+) -> None:
+    command = [*sinews_command(), "evolve", "snake", "--population", "5", "--generations",
+               "100000", "--seconds", "0.5", "--db", str(figure_db)]  # fmt: skip
+    cli = subprocess.Popen(command, env=studio_env, stdout=subprocess.DEVNULL,
+                           stderr=subprocess.DEVNULL)  # fmt: skip
+    try:
+        while True:
+            assert cli.poll() is None, "the CLI run ended before the page saw it running"
+            runs = ok(figure_server, "/api/figures/session")["runs"]
+            newest = runs[0]
+            if (
+                newest["kind"] == "springnet"
+                and newest["figure"] == "snake"
+                and (newest["generations"] >= 2 and newest["status"] == "running")
+            ):
+                break
+            time.sleep(0.2)
+        shown = ok(figure_server, f"/api/figures/runs/{newest['id']}")
+        assert shown["readOnly"] and shown["job"] is None
+        breed = f"/api/figures/runs/{newest['id']}/generations/0/breed"
+        status, answer = call(figure_server, breed, {"picks": [0]})
+        assert status == 409 and "running in another process" in answer["error"]
+        assert call(figure_server, f"/api/figures/runs/{newest['id']}/evolve",
+                    {"generations": 1})[0] == 409  # fmt: skip
+        later = ok(figure_server, f"/api/figures/runs/{newest['id']}")
+        while later["generations"] == shown["generations"]:  # live: it keeps growing
+            time.sleep(0.2)
+            later = ok(figure_server, f"/api/figures/runs/{newest['id']}")
+        assert len(later["history"]) == later["generations"]
+    finally:
+        cli.send_signal(signal.SIGINT)
+        cli.wait(timeout=120)
