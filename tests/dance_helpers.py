@@ -24,7 +24,10 @@ def click_song(path: Path, *, seconds: float = 2.0, bpm: float = 120.0) -> Path:
         on = local >= 0
         song += on * np.sin(2 * np.pi * 60.0 * local) * np.exp(-np.maximum(local, 0) * 12.0)
         half = local - period / 2
-        song += 0.3 * (half >= 0) * np.sin(2 * np.pi * 3000.0 * half) * np.exp(
-            -np.maximum(half, 0) * 60.0
+        song += (
+            0.3
+            * (half >= 0)
+            * np.sin(2 * np.pi * 3000.0 * half)
+            * np.exp(-np.maximum(half, 0) * 60.0)
         )
     return save_wav(path, (0.5 * song).astype(np.float32), RATE)

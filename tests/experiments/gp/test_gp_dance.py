@@ -64,7 +64,7 @@ def test_a_dance_is_stored_with_its_song_and_rated_by_the_beat(folder: Path, who
     assert {"sin", "cos"} <= set(info.config["functions"])
     assert list(individuals[0].terms or {}) == ["lift", "head", "fallen", "spot", "joints",
                                                 "smooth"]  # fmt: skip
-    lifts = {round((ind.terms or {})["lift"], 6) for ind in individuals}
+    lifts = {round(float((ind.terms or {})["lift"] or 0.0), 6) for ind in individuals}
     assert len(lifts) > 3  # programs dance differently to the beat
 
 
@@ -78,8 +78,9 @@ def test_a_killed_dance_resumes_to_the_uninterrupted_one(folder: Path, whole: Pa
     assert stored(cut) == stored(whole)
 
 
-def test_a_dance_whose_song_changed_is_not_resumed(folder: Path, whole: Path,
-                                                   capsys: pytest.CaptureFixture[str]) -> None:  # fmt: skip
+def test_a_dance_whose_song_changed_is_not_resumed(
+    folder: Path, whole: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     moved = folder / "changed"
     moved.mkdir()
     click_song(moved / "song.wav")
@@ -91,7 +92,8 @@ def test_a_dance_whose_song_changed_is_not_resumed(folder: Path, whole: Path,
         store.update_config(info.id, config)
     assert main(["runs", "resume", "1", "--generations", "5", "--db", str(copy)]) == 2
     last = capsys.readouterr().err.strip().splitlines()[-1]  # after the progress line
-    assert last.startswith("error: ") and last.endswith("the song has changed since the run started")
+    assert last.startswith("error: ")
+    assert last.endswith("the song has changed since the run started")
 
 
 @pytest.mark.parametrize(

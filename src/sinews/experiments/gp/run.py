@@ -23,8 +23,8 @@ import numpy.typing as npt
 from sinews.control.gp import BASIC_FUNCTIONS, GENOME_CODEC
 from sinews.errors import SinewsError
 from sinews.evolve import Evaluator
-from sinews.experiments.dancers.settings import song_path
 from sinews.experiments.evolution import GenerationSummary, Strategies, continue_run
+from sinews.experiments.figures import dance_song
 from sinews.experiments.gp.score import GPScorer
 from sinews.experiments.gp.settings import GPSettings, Runtime
 from sinews.experiments.gp.simulate import measure_programs
@@ -38,7 +38,6 @@ from sinews.experiments.kinds import (
 from sinews.experiments.run_config import ConfigError, EvolutionConfig, build_config
 from sinews.figures.tasks import Task, make_task
 from sinews.limits import check_number
-from sinews.music.analysis import analyse_file
 from sinews.music.features import MusicFeatures
 from sinews.render.figure_scene import scene_of
 from sinews.store import Individual, RunInfo, RunStore
@@ -156,9 +155,9 @@ class GPKind:
         if song is not None:
             task = _task(subject, {**given, "seconds": song_seconds(task, song, given)})
         generations = int(given.get("generations") or DEFAULTS["generations"])
-        defaults = {**DEFAULTS, "fitness": list(task.weights),
-                    "phase_in": default_phase_in(generations),
-                    "functions": list(DANCE_FUNCTIONS if task.music else BASIC_FUNCTIONS)}  # fmt: skip
+        functions = DANCE_FUNCTIONS if task.music else BASIC_FUNCTIONS
+        defaults = {**DEFAULTS, "fitness": list(task.weights), "functions": list(functions),
+                    "phase_in": default_phase_in(generations)}  # fmt: skip
         config, extra = build_config(
             file_values=file_values, options=options, defaults=defaults,
             term_defaults=dict(task.weights), kind_keys=_KIND_KEYS,
@@ -178,8 +177,7 @@ class GPKind:
         Strategies(settings.genomes).new(config.to_dict(), config.seed)  # bad options fail here
         return store.create_run(
             f"{CONTROLLER}-{task.figure.name}",
-            config={**config.to_dict(), **settings.to_dict(), "until": until,
-                    "song": song_setting},  # fmt: skip
+            config={**config.to_dict(), **settings.to_dict(), "until": until, "song": song_setting},
             seed=config.seed,
             genome_codec=GENOME_CODEC,
             song_hash=settings.song_hash,
@@ -321,25 +319,6 @@ def _summary(names: list[str], terms: npt.NDArray[np.float64], distance: float) 
     if names[0] == "lift":
         return f"beat lift {float(terms[0]):.3f}"
     return f"{abs(distance):.3f} m"
-
-
-def dance_song(given: Mapping[str, Any]) -> tuple[Path, MusicFeatures] | None:
-    """The song a run's ``song`` setting names, analysed (cached), or None without one.
-
-    Raises:
-        SinewsError: a song for a task other than a dance, a dance without one, or a
-            song that cannot be read (one line, as everywhere).
-    """
-    dancing = given.get("task") == "dance"
-    song = given.get("song")
-    if not song:
-        if dancing:
-            raise SinewsError("a dance needs a song: --song FILE or --song demo:groove")
-        return None
-    if not dancing:
-        raise SinewsError("--song is for the dance task (--task dance)")
-    path = song_path(str(song))
-    return path, analyse_file(path)
 
 
 def song_seconds(task: Task, song: tuple[Path, MusicFeatures], given: Mapping[str, Any]) -> float:

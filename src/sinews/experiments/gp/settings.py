@@ -18,8 +18,8 @@ from typing import Any
 from sinews.control.gp import BASIC_FUNCTIONS, PrimitiveSet, Program, parse_program
 from sinews.errors import SinewsError
 from sinews.evolve import GenomeSpace
+from sinews.experiments.figures import heard_song
 from sinews.figures.tasks import Task, make_task
-from sinews.music.analysis import analyse_file
 from sinews.music.features import MusicFeatures
 
 __all__ = ["GPSettings", "Runtime"]
@@ -117,12 +117,7 @@ class GPSettings:
         Raises:
             SinewsError: the song cannot be read, or has changed since the run started.
         """
-        if self.song_path is None:
-            return None
-        music = analyse_file(self.song_path)
-        if self.song_hash is not None and music.song_hash != self.song_hash:
-            raise SinewsError(f"{self.song_path}: the song has changed since the run started")
-        return music
+        return None if self.song_path is None else heard_song(self.song_path, self.song_hash)
 
     @property
     def genomes(self) -> GenomeSpace:
