@@ -45,19 +45,25 @@ def drive_weights(genes: FloatArray, n_masses: int, n_sensors: int) -> FloatArra
 def dominant_period(signal: npt.ArrayLike, hz: float, *, skip: float = 1.0) -> float:
     """The period (s) of the strongest non-zero frequency of ``signal`` after ``skip`` s.
 
+    The straight line that fits each signal best is taken away first: a net pushed by a
+    force whose mean over the trial is not zero drifts, and the drift is not a swing.
+
     Args:
         signal: (T,) or (T, K) samples at ``hz`` (K signals: their power spectra summed).
         hz: samples per second.
         skip: seconds of transient left out.
 
     Returns:
-        The period, s; inf for a constant signal.
+        The period, s; inf for a signal that is constant (or a straight line).
     """
     x = np.asarray(signal, dtype=np.float64)
     x = x.reshape(len(x), -1)[round(skip * hz) :]
-    x = (x - x.mean(axis=0)) * np.hanning(len(x))[:, None]
+    t = np.linspace(-1.0, 1.0, len(x))
+    line = np.polynomial.polynomial.polyfit(t, x, 1)
+    x = (x - np.polynomial.polynomial.polyval(t, line).T) * np.hanning(len(x))[:, None]
     pad = 8 * len(x)  # a finer grid of frequencies
     power = (np.abs(np.fft.rfft(x, n=pad, axis=0)) ** 2).sum(axis=1)
     power[0] = 0.0
     peak = int(np.argmax(power))
-    return float("inf") if power[peak] <= 0.0 else pad / (peak * hz)
+    still = np.abs(x).max(initial=0.0) < 1e-12  # nothing but rounding left
+    return float("inf") if still or power[peak] <= 0.0 else pad / (peak * hz)
