@@ -75,12 +75,13 @@ def test_a_driven_net_swings_at_the_beat_and_a_free_one_at_its_own_period(song: 
 def test_a_net_dance_runs_and_is_rated_by_the_beat(song: Path, tmp_path: Path) -> None:
     db = tmp_path / "runs.db"
     options = ["--controller", "springnet", "--task", "dance", "--song", str(song),
-               "--population", "6", "--generations", "2", "--seconds", "2", "--db", str(db)]  # fmt: skip
+               "--population", "6", "--generations", "2", "--seconds", "2",
+               "--db", str(db)]  # fmt: skip
     assert main(["evolve", "luxo", *options]) == 0
     with RunStore(db) as store:
         (info,) = store.runs()
         individuals = store.individuals(info.id)
     assert info.config["task"] == "dance" and info.config["strategy"]["name"] == "ga"
     assert info.song_hash == analyse_file(song).song_hash
-    assert list(individuals[0].terms or {})[0] == "lift"
+    assert next(iter(individuals[0].terms or {})) == "lift"
     assert len(individuals[0].genome) == SpringNetSettings.from_values(info.config).genome_size
