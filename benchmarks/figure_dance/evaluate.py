@@ -14,6 +14,8 @@ against the corpus's REFERENCE beats (`benchmarks/beats/reference/`):
   end-effector view (`sinews.music.beat_lift`);
 - lift_own: lift_joints against our tracker's beats (what the run was rated by);
 - fallen, smooth: the run's own style terms on that song.
+
+With --videos DIR, each dance is also drawn as DIR/SONG.mp4 with the song as sound.
 """
 
 from __future__ import annotations
@@ -38,11 +40,15 @@ from sinews.experiments.gp.simulate import measure_programs  # noqa: E402
 from sinews.experiments.kinds import chosen_of  # noqa: E402
 from sinews.figures.terms import joint_lift  # noqa: E402
 from sinews.music import analyse_file, beat_lift  # noqa: E402
+from sinews.render import render_figure  # noqa: E402
 from sinews.store import RunStore  # noqa: E402
 
 
-def dance_on(settings: GPSettings, program: str, song: Path, seconds: float) -> dict[str, float]:
-    """The program's dance to ``song`` (first ``seconds``), scored against reference beats."""
+def dance_on(
+    settings: GPSettings, program: str, song: Path, seconds: float, video: Path | None = None
+) -> dict[str, float]:
+    """The program's dance to ``song`` (first ``seconds``), scored against reference beats
+    (and drawn to ``video``, an MP4 with the song, if given)."""
     music = analyse_file(song)
     heard = dataclasses.replace(settings, song_path=str(song), song_hash=music.song_hash,
                                 seconds=seconds)  # fmt: skip
@@ -56,6 +62,9 @@ def dance_on(settings: GPSettings, program: str, song: Path, seconds: float) -> 
     terms = dict(zip(heard.task.weights, done.terms[0].tolist(), strict=True))
     angles = result.qpos[:, 0, driven][:, :, None]
     bodies = result.body_pos[:, 0][:, :, [0, 2]]
+    if video is not None:
+        render_figure(figure, result.trajectory(0), video, size=(480, 360), audio=song,
+                      title=f"{song.stem}, lift {terms['lift']:.2f}")  # fmt: skip
     return {
         "bpm": float(music.tempo_bpm),
         "lift_joints": joint_lift(angles, 60.0, reference),
@@ -76,6 +85,7 @@ def main() -> None:
     parser.add_argument("--songs", nargs="+", default=["supertux-forest-sprint",
                         "supertux-battle-theme", "hedgewars-oriental"])  # fmt: skip
     parser.add_argument("--json", type=Path, default=None)
+    parser.add_argument("--videos", type=Path, default=None, help="folder for one MP4 a song")
     args = parser.parse_args()
     with RunStore(args.db) as store:
         settings = _settings(store.run(args.run))
@@ -83,8 +93,9 @@ def main() -> None:
     print(f"individual {chosen.id} (generation {chosen.generation}): {chosen.genome}")
     rows = {}
     for song in args.songs:
+        video = None if args.videos is None else args.videos / f"{song}.mp4"
         row = dance_on(settings, str(chosen.genome), excerpt_path(default_cache(), song),
-                       args.seconds)  # fmt: skip
+                       args.seconds, video)  # fmt: skip
         rows[song] = row
         print(f"{song:26s} " + " ".join(f"{k} {v:.3f}" for k, v in row.items()))
     if args.json:

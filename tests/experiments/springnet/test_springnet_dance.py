@@ -31,11 +31,11 @@ def song(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Path]:
 
 
 def test_drive_genes_weigh_only_the_drive_columns() -> None:
-    genes = np.array([[1.0, 0.0, 0.5, 0.75, 0.25, 0.5]])  # 2 masses x 3 drive columns
+    genes = np.array([[1.0, 0.0, 0.75, 0.5]])  # 2 masses x 2 drive columns
     weights = drive_weights(genes, 2, 5)
     assert weights.shape == (1, 2, 5 + len(MUSIC_TERMINALS))
     columns = [5 + MUSIC_TERMINALS.index(name) for name in DRIVE]
-    expected = np.array([[1.0, -1.0, 0.0], [0.5, -0.5, 0.0]]) * DRIVE_FORCE
+    expected = np.array([[1.0, -1.0], [0.5, 0.0]]) * DRIVE_FORCE
     np.testing.assert_allclose(weights[0][:, columns], expected)
     weights[0][:, columns] = 0.0
     assert not weights.any()
@@ -61,7 +61,7 @@ def test_a_driven_net_swings_at_the_beat_and_a_free_one_at_its_own_period(song: 
     size, n = settings.encoding.size, settings.masses
     genes = np.full((3, settings.genome_size), 0.5)  # every mass at 0, no drive
     genes[:, n : size - n] = 0.0  # no springs
-    genes[0, size:] = [0.8, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5]  # mass 0 feels the beat
+    genes[0, size:] = [0.8, 0.5, 0.5, 0.5, 0.5, 0.5]  # mass 0 feels the beat's sine
     genes[2, n : size - n] = 0.05  # springs of 5
     genes[2, size - n : size] = [0.2, 0.8, 0.5]  # masses apart: the net swings by itself
     _, net = simulate(settings, genes, record_hz=100.0)
