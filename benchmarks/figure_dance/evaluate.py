@@ -15,7 +15,8 @@ against the corpus's REFERENCE beats (`benchmarks/beats/reference/`):
 - lift_own: lift_joints against our tracker's beats (what the run was rated by);
 - fallen, smooth: the run's own style terms on that song.
 
-With --videos DIR, each dance is also drawn as DIR/SONG.mp4 with the song as sound.
+With --videos DIR, each dance is also drawn as DIR/SONG.mp4 with the song as sound, and
+its joint and body speeds over 4-8 s with the reference beats as DIR/SONG.png.
 """
 
 from __future__ import annotations
@@ -40,6 +41,7 @@ from sinews.experiments.gp.simulate import measure_programs  # noqa: E402
 from sinews.experiments.kinds import chosen_of  # noqa: E402
 from sinews.figures.terms import joint_lift  # noqa: E402
 from sinews.music import analyse_file, beat_lift  # noqa: E402
+from sinews.music.beat_align import mean_speed  # noqa: E402
 from sinews.render import render_figure  # noqa: E402
 from sinews.store import RunStore  # noqa: E402
 
@@ -65,6 +67,7 @@ def dance_on(
     if video is not None:
         render_figure(figure, result.trajectory(0), video, size=(480, 360), audio=song,
                       title=f"{song.stem}, lift {terms['lift']:.2f}")  # fmt: skip
+        speed_plot(angles, bodies, reference, video.with_suffix(".png"), song.stem)
     return {
         "bpm": float(music.tempo_bpm),
         "lift_joints": joint_lift(angles, 60.0, reference),
@@ -74,6 +77,29 @@ def dance_on(
         "smooth": terms["smooth"],
         "failed": bool(done.failed[0]),
     }
+
+
+def speed_plot(
+    angles: np.ndarray, bodies: np.ndarray, beats: np.ndarray, path: Path, title: str
+) -> None:
+    """Mean joint speed and mean body speed over 4 s from t = 4 s, with the reference beats."""
+    from matplotlib.figure import Figure
+
+    fps = 60.0
+    window = slice(round(4 * fps), round(8 * fps))
+    t = np.arange(len(angles))[window] / fps
+    figure = Figure(figsize=(8, 3), dpi=100)
+    axes = figure.add_subplot()
+    for name, points, unit in (("joints", angles, "rad/s"), ("bodies", bodies, "m/s x 10")):
+        speed = mean_speed(points, fps)[window] * (10.0 if name == "bodies" else 1.0)
+        axes.plot(t, speed, label=f"mean {name} speed, {unit}")
+    for beat in beats[(beats >= t[0]) & (beats <= t[-1])]:
+        axes.axvline(beat, color="0.6", linewidth=0.8)
+    axes.set_xlabel("s (grey: reference beats)")
+    axes.set_title(title)
+    axes.legend(loc="upper right", fontsize=8)
+    figure.tight_layout()
+    figure.savefig(path)
 
 
 def main() -> None:

@@ -10,6 +10,10 @@ masses (`dominant_period`, after 1 s) against the REFERENCE beat period (the med
 interval of the reference beats in the window); the nearest simple ratio (1/4 … 4) and
 how far off it the period is; the same net with its drive weights at zero (does the
 period come from the music?); and the beat lift of the joints against the reference beats.
+
+With --hand-drive, the net is not a run's but set by hand to show the mechanism: no
+springs, every mass at 0 and of mass 1.09 (gene 0.1), each output mass pushed by
+``beat_cos`` (+30, −30, +30, …): a net whose motion is the drive's alone.
 """
 
 from __future__ import annotations
@@ -29,7 +33,7 @@ sys.path.insert(0, str(BEATS))
 from fetch import default_cache, excerpt_path  # noqa: E402
 
 from sinews.experiments.kinds import chosen_of  # noqa: E402
-from sinews.experiments.springnet.dance import dominant_period  # noqa: E402
+from sinews.experiments.springnet.dance import DRIVE, dominant_period  # noqa: E402
 from sinews.experiments.springnet.run import _settings  # noqa: E402
 from sinews.experiments.springnet.settings import SpringNetSettings  # noqa: E402
 from sinews.experiments.springnet.simulate import simulate  # noqa: E402
@@ -70,6 +74,17 @@ def net_on(settings: SpringNetSettings, genes: np.ndarray, song: Path) -> dict[s
     }
 
 
+def hand_driven(settings: SpringNetSettings) -> np.ndarray:
+    """(G,) genes of a net moved by the drive alone (see --hand-drive)."""
+    size, n = settings.encoding.size, settings.masses
+    genes = np.full(settings.genome_size, 0.5)
+    genes[:n] = 0.1
+    genes[n : size - n] = 0.0
+    drive = genes[size:].reshape(n, len(DRIVE))
+    drive[:, DRIVE.index("beat_cos")] = np.resize([1.0, 0.0], n)
+    return genes
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("db", type=Path)
@@ -77,12 +92,16 @@ def main() -> None:
     parser.add_argument("--individual", type=int, default=None)
     parser.add_argument("--songs", nargs="+", default=SONGS)
     parser.add_argument("--json", type=Path, default=None)
+    parser.add_argument("--hand-drive", action="store_true")
     args = parser.parse_args()
     with RunStore(args.db) as store:
         settings = _settings(store.run(args.run))
         chosen = chosen_of(store, args.run, args.individual)
     genes = np.asarray(chosen.genome, dtype=np.float64)
     print(f"individual {chosen.id} (generation {chosen.generation}), fitness {chosen.fitness}")
+    if args.hand_drive:
+        genes = hand_driven(settings)
+        print("a net set by hand instead: no springs, beat_cos on every mass")
     rows = {}
     for song in args.songs:
         rows[song] = net_on(settings, genes, excerpt_path(default_cache(), song))
