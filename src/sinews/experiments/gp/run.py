@@ -168,6 +168,7 @@ class GPKind:
         if until is not None:
             until = check_number("until", until, 1e-4, 1.0)
         song_setting = extra.pop("song", None)
+        named = {"song": song_setting} if song_setting else {}  # what `runs list` shows
         heard = {} if song is None else {"song_path": str(song[0]), "song_hash": song[1].song_hash}
         settings = GPSettings.from_values(
             {**extra, "task": task.name, "task_options": task.params, "seconds": task.seconds,
@@ -177,7 +178,7 @@ class GPKind:
         Strategies(settings.genomes).new(config.to_dict(), config.seed)  # bad options fail here
         return store.create_run(
             f"{CONTROLLER}-{task.figure.name}",
-            config={**config.to_dict(), **settings.to_dict(), "until": until, "song": song_setting},
+            config={**config.to_dict(), **settings.to_dict(), "until": until, **named},
             seed=config.seed,
             genome_codec=GENOME_CODEC,
             song_hash=settings.song_hash,

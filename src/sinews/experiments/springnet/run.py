@@ -141,7 +141,7 @@ class SpringNetKind:
                 **config.to_dict(),
                 **settings.to_dict(),
                 "keep": keep,
-                "song": given.get("song"),
+                **({"song": given["song"]} if song is not None else {}),  # for `runs list`
             },
             seed=config.seed,
             genome_codec="float64",
