@@ -134,3 +134,18 @@ def dance_song(given: Mapping[str, Any]) -> tuple[Path, MusicFeatures] | None:
         raise SinewsError("--song is for the dance task (--task dance)")
     path = song_path(str(song))
     return path, analyse_file(path)
+
+
+def dance_seconds(music: MusicFeatures, seconds: Any, default: float) -> Any:
+    """A dance's length: ``seconds`` if given (not longer than the song; other checks are
+    the run settings'), else ``default`` or the whole song if shorter.
+
+    Raises:
+        SinewsError: ``seconds`` is longer than the song.
+    """
+    if seconds is None:
+        return min(default, music.duration)
+    number = isinstance(seconds, int | float) and not isinstance(seconds, bool)
+    if number and seconds > music.duration + 1e-9:
+        raise SinewsError(f"the song is only {music.duration:.1f} s long; dance at most that")
+    return seconds

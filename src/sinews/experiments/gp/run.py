@@ -24,7 +24,7 @@ from sinews.control.gp import BASIC_FUNCTIONS, GENOME_CODEC
 from sinews.errors import SinewsError
 from sinews.evolve import Evaluator
 from sinews.experiments.evolution import GenerationSummary, Strategies, continue_run
-from sinews.experiments.figures import dance_song
+from sinews.experiments.figures import dance_seconds, dance_song
 from sinews.experiments.gp.score import GPScorer
 from sinews.experiments.gp.settings import GPSettings, Runtime
 from sinews.experiments.gp.simulate import measure_programs
@@ -38,7 +38,6 @@ from sinews.experiments.kinds import (
 from sinews.experiments.run_config import ConfigError, EvolutionConfig, build_config
 from sinews.figures.tasks import Task, make_task
 from sinews.limits import check_number
-from sinews.music.features import MusicFeatures
 from sinews.render.figure_scene import scene_of
 from sinews.store import Individual, RunInfo, RunStore
 
@@ -153,7 +152,8 @@ class GPKind:
         song = dance_song(given)
         task = _task(subject, given)
         if song is not None:
-            task = _task(subject, {**given, "seconds": song_seconds(task, song, given)})
+            seconds = dance_seconds(song[1], given.get("seconds"), task.seconds)
+            task = _task(subject, {**given, "seconds": seconds})
         generations = int(given.get("generations") or DEFAULTS["generations"])
         functions = DANCE_FUNCTIONS if task.music else BASIC_FUNCTIONS
         defaults = {**DEFAULTS, "fitness": list(task.weights), "functions": list(functions),
@@ -320,17 +320,6 @@ def _summary(names: list[str], terms: npt.NDArray[np.float64], distance: float) 
     if names[0] == "lift":
         return f"beat lift {float(terms[0]):.3f}"
     return f"{abs(distance):.3f} m"
-
-
-def song_seconds(task: Task, song: tuple[Path, MusicFeatures], given: Mapping[str, Any]) -> float:
-    """A dance's length: ``seconds`` if given (no longer than the song), else the task's or
-    the whole song if shorter."""
-    duration = song[1].duration
-    if given.get("seconds") is None:
-        return min(task.seconds, duration)
-    if task.seconds > duration + 1e-9:
-        raise SinewsError(f"{song[0].name} is only {duration:.1f} s long; dance at most that")
-    return task.seconds
 
 
 def _number(value: object, name: str) -> float:

@@ -25,7 +25,13 @@ from sinews.experiments.evolution import (
     continue_run,
     record_picks,
 )
-from sinews.experiments.figures import FIGURES, dance_song, make_figure, read_keep_file
+from sinews.experiments.figures import (
+    FIGURES,
+    dance_seconds,
+    dance_song,
+    make_figure,
+    read_keep_file,
+)
 from sinews.experiments.gp.run import default_phase_in
 from sinews.experiments.kinds import (
     KindOption,
@@ -40,7 +46,6 @@ from sinews.experiments.springnet.score import SpringNetScorer
 from sinews.experiments.springnet.settings import TERMS, SpringNetSettings
 from sinews.experiments.springnet.simulate import simulate
 from sinews.figures.tasks import make_task
-from sinews.music.features import MusicFeatures
 from sinews.render.figure import NetPanel
 from sinews.store import Individual, RunInfo, RunStore
 
@@ -119,7 +124,10 @@ class SpringNetKind:
         song = dance_song(given)
         defaults, terms = (DEFAULTS, TERMS) if song is None else dance_defaults(subject, given)
         if song is not None:
-            options = {**options, "seconds": dance_seconds(song[1], given)}
+            options = {
+                **options,
+                "seconds": dance_seconds(song[1], given.get("seconds"), DANCE_SECONDS),
+            }
         config, extra = build_config(
             file_values=file_values,
             options={**options, "figure": subject},
@@ -274,17 +282,6 @@ def dance_defaults(
     defaults = {**DEFAULTS, "population": 250, "strategy": "ga", "fitness": list(weights),
                 "phase_in": default_phase_in(generations)}  # fmt: skip
     return defaults, weights
-
-
-def dance_seconds(music: MusicFeatures, given: Mapping[str, Any]) -> Any:
-    """A dance's length: ``seconds`` if given (no longer than the song), else 10 s or the
-    whole song if shorter."""
-    seconds = given.get("seconds")
-    if seconds is None:
-        return min(DANCE_SECONDS, music.duration)
-    if isinstance(seconds, int | float) and seconds > music.duration + 1e-9:
-        raise SinewsError(f"the song is only {music.duration:.1f} s long; dance at most that")
-    return seconds  # checked with the other settings
 
 
 def _settings(info: RunInfo) -> SpringNetSettings:
