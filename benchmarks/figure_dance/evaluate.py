@@ -15,6 +15,8 @@ against the corpus's REFERENCE beats (`benchmarks/beats/reference/`):
 - lift_own: lift_joints against our tracker's beats (what the run was rated by);
 - fallen, smooth: the run's own style terms on that song.
 
+With --beats-of ID, every dance is scored against that song's reference beats instead
+(a control: a dance to one song against another's beats should lift about 0).
 With --videos DIR, each dance is also drawn as DIR/SONG.mp4 with the song as sound, and
 its joint and body speeds over 4-8 s with the reference beats as DIR/SONG.png.
 """
@@ -47,7 +49,12 @@ from sinews.store import RunStore  # noqa: E402
 
 
 def dance_on(
-    settings: GPSettings, program: str, song: Path, seconds: float, video: Path | None = None
+    settings: GPSettings,
+    program: str,
+    song: Path,
+    seconds: float,
+    video: Path | None = None,
+    beats_of: str | None = None,
 ) -> dict[str, float]:
     """The program's dance to ``song`` (first ``seconds``), scored against reference beats
     (and drawn to ``video``, an MP4 with the song, if given)."""
@@ -55,7 +62,7 @@ def dance_on(
     heard = dataclasses.replace(settings, song_path=str(song), song_hash=music.song_hash,
                                 seconds=seconds)  # fmt: skip
     done = measure_programs(heard, heard.parse([program]), Runtime(record_hz=60.0), record=True)
-    reference = np.loadtxt(BEATS / "reference" / f"{song.stem}.txt")
+    reference = np.loadtxt(BEATS / "reference" / f"{beats_of or song.stem}.txt")
     result = done.result
     assert result.qpos is not None and result.body_pos is not None
     figure = heard.task.figure
@@ -112,6 +119,7 @@ def main() -> None:
                         "supertux-battle-theme", "hedgewars-oriental"])  # fmt: skip
     parser.add_argument("--json", type=Path, default=None)
     parser.add_argument("--videos", type=Path, default=None, help="folder for one MP4 a song")
+    parser.add_argument("--beats-of", default=None, help="score against this song's beats")
     args = parser.parse_args()
     with RunStore(args.db) as store:
         settings = _settings(store.run(args.run))
@@ -121,7 +129,7 @@ def main() -> None:
     for song in args.songs:
         video = None if args.videos is None else args.videos / f"{song}.mp4"
         row = dance_on(settings, str(chosen.genome), excerpt_path(default_cache(), song),
-                       args.seconds, video)  # fmt: skip
+                       args.seconds, video, args.beats_of)  # fmt: skip
         rows[song] = row
         print(f"{song:26s} " + " ".join(f"{k} {v:.3f}" for k, v in row.items()))
     if args.json:
