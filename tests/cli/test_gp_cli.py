@@ -157,7 +157,7 @@ def test_humanoid_runs_draw_the_target_and_the_hand(
         (["luxo", "--task", "hop", "--target", "3"], "0.5 to 2 m ahead or behind, got 3.0"),
         (["luxo", "--target", "abc"], "--target for luxo-hop must be a distance in m"),
         (["luxo", "--target", "1,2"], "--target for luxo-hop must be a distance in m"),
-        (["luxo", "--task", "dance"], "no luxo task 'dance'; choose from hop, limbo"),
+        (["luxo", "--task", "waltz"], "no luxo task 'waltz'; choose from hop, limbo, dance"),
         (["snake"], "no controller called 'gp' for the snake; choose from springnet"),
         (["humanoid", "--task", "nose", "--target", "0.4,1.2"], "the nose task has no --target"),
         (["humanoid", "--task", "reach", "--target", "0.45"], "must be X,Z in m"),

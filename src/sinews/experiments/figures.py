@@ -13,18 +13,30 @@ from __future__ import annotations
 
 import os
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
 from sinews.errors import SinewsError
+from sinews.experiments.dancers.settings import song_path
 from sinews.figures import Figure, RolloutResult, humanoid, luxo, snake
 from sinews.figures.humanoid3d import humanoid3d
 from sinews.figures.luxo3d import luxo3d
+from sinews.music.analysis import analyse_file
+from sinews.music.features import MusicFeatures
 
-__all__ = ["FIGURES", "distance_travelled", "make_figure", "parse_keep", "read_keep_file"]
+__all__ = [
+    "FIGURES",
+    "dance_song",
+    "distance_travelled",
+    "heard_song",
+    "make_figure",
+    "parse_keep",
+    "read_keep_file",
+]
 
 FIGURES: dict[str, Callable[[], Figure]] = {
     "snake": snake,
@@ -91,3 +103,49 @@ def read_keep_file(path: str | os.PathLike[str]) -> dict[int, list[int]]:
     except UnicodeDecodeError:
         raise SinewsError(f"{path}: not a UTF-8 text file") from None
     return parse_keep(text, where=str(path))
+
+
+def heard_song(path: str, song_hash: str | None) -> MusicFeatures:
+    """The analysis (cached) of the song a figure's run dances to, checked against its hash.
+
+    Raises:
+        SinewsError: the song cannot be read, or has changed since the run started.
+    """
+    music = analyse_file(path)
+    if song_hash is not None and music.song_hash != song_hash:
+        raise SinewsError(f"{path}: the song has changed since the run started")
+    return music
+
+
+def dance_song(given: Mapping[str, Any]) -> tuple[Path, MusicFeatures] | None:
+    """The song a run's ``song`` setting names, analysed (cached), or None without one.
+
+    Raises:
+        SinewsError: a song for a task other than a dance, a dance without one, or a
+            song that cannot be read (one line, as everywhere).
+    """
+    dancing = given.get("task") == "dance"
+    song = given.get("song")
+    if not song:
+        if dancing:
+            raise SinewsError("a dance needs a song: --song FILE or --song demo:groove")
+        return None
+    if not dancing:
+        raise SinewsError("--song is for the dance task (--task dance)")
+    path = song_path(str(song))
+    return path, analyse_file(path)
+
+
+def dance_seconds(music: MusicFeatures, seconds: Any, default: float) -> Any:
+    """A dance's length: ``seconds`` if given (not longer than the song; other checks are
+    the run settings'), else ``default`` or the whole song if shorter.
+
+    Raises:
+        SinewsError: ``seconds`` is longer than the song.
+    """
+    if seconds is None:
+        return min(default, music.duration)
+    number = isinstance(seconds, int | float) and not isinstance(seconds, bool)
+    if number and seconds > music.duration + 1e-9:
+        raise SinewsError(f"the song is only {music.duration:.1f} s long; dance at most that")
+    return seconds

@@ -18,13 +18,16 @@ import numpy.typing as npt
 from sinews.figures._mujoco import require_mujoco
 from sinews.figures.figure import Figure, FigureError
 
-__all__ = ["STYLE", "TERMS", "Goal", "Task", "Wave", "standing_height"]
+__all__ = ["MAIN_GOALS", "STYLE", "TERMS", "Goal", "Task", "Wave", "standing_height"]
 
 FloatArray = npt.NDArray[np.float64]
 
-TERMS = ("distance", "early", "still", "head", "fallen", "neutral", "energy", "touch")
-"""Every fitness term a task can weigh (see `sinews.figures.terms`); ``distance`` is
-always the main goal."""
+TERMS = ("distance", "early", "still", "head", "fallen", "neutral", "energy", "touch",
+         "lift", "spot", "joints", "smooth")  # fmt: skip
+"""Every fitness term a task can weigh (see `sinews.figures.terms`); the main goal is
+``distance``, or ``lift`` for a dance."""
+MAIN_GOALS = ("distance", "lift")
+"""The terms a task's weights may start with: its main goal."""
 
 
 STYLE = {"early": 0.2, "still": 0.5, "head": 3.0, "fallen": 2.0, "neutral": 0.1, "energy": 0.0}
@@ -132,6 +135,9 @@ class Task:
         min_height: ... or while the root is lower than this, m (``root_z`` is
             measured from the rest pose, so this is usually negative).
         params: what the task was built with (for configs and titles).
+        music: the music terminals the controller hears after the sensors and the goal's
+            (see `sinews.control.music_input`; a dance's); their values follow the
+            figure's sensor columns in the controller's input rows.
     """
 
     name: str
@@ -144,11 +150,13 @@ class Task:
     max_tilt: float = 1.0
     min_height: float = -math.inf
     params: Mapping[str, Any] = field(default_factory=dict)
+    music: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         unknown = [t for t in self.weights if t not in TERMS]
-        if unknown or next(iter(self.weights), None) != "distance":
-            raise FigureError(f"{self.name}: weights must start with 'distance' and use {TERMS}")
+        if unknown or next(iter(self.weights), None) not in MAIN_GOALS:
+            raise FigureError(f"{self.name}: weights must start with {' or '.join(MAIN_GOALS)} "
+                              f"and use {TERMS}")  # fmt: skip
         for column in (*self.sensors, *self.goal.tracked, *self.goal.target, *self.goal.origin):
             if isinstance(column, str):
                 self.figure.sensor_index(column)
@@ -160,8 +168,9 @@ class Task:
 
     @property
     def terminals(self) -> tuple[str, ...]:
-        """Names of the controller's input columns: the sensors, then the goal-relative ones."""
-        return (*self.sensors, *self.goal.names)
+        """Names of the controller's input columns: the sensors, the goal-relative ones, the
+        music's."""
+        return (*self.sensors, *self.goal.names, *self.music)
 
     @property
     def actuators(self) -> npt.NDArray[np.intp]:
@@ -169,17 +178,23 @@ class Task:
         return np.array([self.figure.joints.index(j) for j in self.joints], dtype=np.intp)
 
     def input_map(self) -> tuple[FloatArray, FloatArray]:
-        """The affine map from sensor columns to `terminals`: ``sensors @ W + b``.
+        """The affine map from input columns to `terminals`: ``inputs @ W + b``.
+
+        The inputs are the figure's S sensor columns, then the M music columns (none
+        unless the task hears music).
 
         Returns:
-            W: (S, V) weights.
+            W: (S + M, V) weights.
             b: (V,) offsets.
         """
         index = self.figure.sensor_index
-        weights = np.zeros((self.figure.n_sensors, len(self.terminals)))
+        n_sensors, n_music = self.figure.n_sensors, len(self.music)
+        weights = np.zeros((n_sensors + n_music, len(self.terminals)))
         offset = np.zeros(len(self.terminals))
         for v, column in enumerate(self.sensors):
             weights[index(column), v] = 1.0
+        for m in range(n_music):
+            weights[n_sensors + m, len(self.terminals) - n_music + m] = 1.0
         first = len(self.sensors)
         if not self.goal.names:
             return weights, offset

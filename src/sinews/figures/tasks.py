@@ -21,6 +21,7 @@ import xml.etree.ElementTree as ET
 from collections.abc import Callable, Mapping
 from typing import Any
 
+from sinews.control.music_input import MUSIC_TERMINALS
 from sinews.figures.figure import Figure, FigureError
 from sinews.figures.humanoid import humanoid
 from sinews.figures.luxo import luxo
@@ -30,6 +31,7 @@ from sinews.figures.tasks3d import TASKS_3D
 from sinews.figures.terms import TaskMeter
 
 __all__ = [
+    "DANCE_STYLE",
     "LIMBO_BOARD_TOP",
     "LIMBO_SHARE",
     "STYLE",
@@ -40,6 +42,7 @@ __all__ = [
     "TaskMeter",
     "Wave",
     "humanoid_reach",
+    "luxo_dance",
     "luxo_hop",
     "luxo_limbo",
     "make_task",
@@ -75,6 +78,29 @@ def luxo_hop(target: float = 1.0, *, seconds: float = 5.0) -> Task:
         weights={"distance": 1.0, **STYLE},
         seconds=seconds,
         params={"target": float(target)},
+    )
+
+
+DANCE_STYLE = {"head": 3.0, "fallen": 2.0, "spot": 0.3, "joints": 0.3, "smooth": 0.3}
+"""Full style weights of a dance (the main goal ``lift`` weighs 1): stay upright, near the
+spot, use every driven joint, move smoothly."""
+
+
+def luxo_dance(*, seconds: float = 10.0) -> Task:
+    """Dance to the song: the lamp's joint motion must pause on the beats (``lift``), with
+    style for staying up, near where it started, using all three joints, smoothly.
+
+    The controller hears the song (`MUSIC_TERMINALS`) beside the hop's sensors.
+    """
+    return Task(
+        name="luxo-dance",
+        figure=luxo(),
+        goal=Goal(tracked=("root_x",), target=(0.0,), names=(), radius=0.1),
+        joints=("base_hinge", "elbow", "neck"),
+        sensors=LUXO_SENSORS,
+        weights={"lift": 1.0, **DANCE_STYLE},
+        seconds=seconds,
+        music=MUSIC_TERMINALS,
     )
 
 
@@ -195,6 +221,7 @@ def humanoid_reach(
 TASKS: Mapping[str, Callable[..., Task]] = {
     "luxo-hop": luxo_hop,
     "luxo-limbo": luxo_limbo,
+    "luxo-dance": luxo_dance,
     "humanoid-reach": humanoid_reach,
     **TASKS_3D,
 }

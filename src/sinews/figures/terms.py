@@ -28,6 +28,19 @@ The terms (`TERMS`), each **higher is better** (penalties are ≤ 0), as
   (τ from the PD law and each servo's torque limit); off in the built-ins.
 - ``touch``: minus the fraction of ticks with contact on a touch body (the
   limbo pole).
+
+A dance's terms (they need the song's beat times, ``TaskMeter(..., beats=...)``):
+
+- ``lift`` (a dance's main goal): the beat lift of the driven joints' motion
+  (`sinews.music.beat_align.beat_lift` with the joint angles as the moving points,
+  sampled at the control rate): how much better the motion's pauses fall on the
+  beats than on the same beats at other phases. About 0 for motion that ignores
+  the beat, however it moves.
+- ``spot``: minus the mean distance of the tracked point from the goal over the
+  trial, m ("stay near a spot").
+- ``joints``: minus the mean shortfall of each driven joint's swing (the standard
+  deviation of its angle) below `JOINT_SWING`, as a share of it ("use all joints").
+- ``smooth``: the driven joints' `sinews.music.beat_align.smoothness` minus 1.
 """
 
 from __future__ import annotations
@@ -37,8 +50,14 @@ import numpy.typing as npt
 
 from sinews.figures.figure import Figure, FigureError
 from sinews.figures.task import TERMS, Task
+from sinews.music.beat_align import beat_lift, smoothness
 
-__all__ = ["TERMS", "TaskMeter"]
+__all__ = ["DANCE_TERMS", "JOINT_SWING", "TERMS", "TaskMeter", "joint_lift"]
+
+DANCE_TERMS = ("lift", "joints", "smooth")
+"""The terms measured on the driven joints' whole motion (recorded only when weighed)."""
+JOINT_SWING = 0.1
+"""A joint swinging less than this (standard deviation of its angle, rad) is under-used."""
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -52,9 +71,14 @@ class TaskMeter:
     Args:
         task: the task.
         n_individuals: P.
+        beats: (K,) the song's beat times, s (a dance's ``lift`` needs them).
     """
 
-    def __init__(self, task: Task, n_individuals: int) -> None:
+    def __init__(
+        self, task: Task, n_individuals: int, *, beats: npt.ArrayLike | None = None
+    ) -> None:
+        if "lift" in task.weights and beats is None:
+            raise FigureError(f"{task.name}: the beat lift needs the song's beats")
         figure = task.figure
         index = figure.sensor_index
         self.task = task
@@ -90,6 +114,12 @@ class TaskMeter:
         self._energy = np.zeros(n)
         self._power = np.zeros(n)
         self._neutral = np.zeros(n)
+        self._beats = np.zeros(0) if beats is None else np.asarray(beats, dtype=np.float64)
+        self._spot = np.zeros(n)
+        self._angles: list[FloatArray] | None = (
+            [] if any(name in task.weights for name in DANCE_TERMS) else None
+        )
+        self._times: list[float] = []
 
     def __call__(self, t: float, sensors: FloatArray, targets: FloatArray) -> None:
         """Take one observation (the rollout's `Observer` signature)."""
@@ -119,6 +149,10 @@ class TaskMeter:
         self._power = np.abs(torque * dq).sum(axis=1)
         neutral = self.task.figure.neutral[self._driven]
         self._neutral = np.abs(q[:, self._driven] - neutral).mean(axis=1)
+        self._spot += self._distance
+        if self._angles is not None:
+            self._angles.append(q[:, self._driven].copy())
+            self._times.append(t)
         self._count += 1
         self._last_t = t
 
@@ -168,8 +202,24 @@ class TaskMeter:
             "neutral": -self._neutral,
             "energy": -self._energy,
             "touch": -self._touch_ticks / n,
+            "spot": -self._spot / n,
         }
+        if self._angles is not None:
+            values |= self._dance_terms()
         return np.column_stack([values[name] for name in self.task.weights])
+
+    def _dance_terms(self) -> dict[str, FloatArray]:
+        """``lift``, ``joints`` and ``smooth`` from the recorded (T, P, J) driven angles."""
+        assert self._angles is not None
+        angles = np.stack(self._angles)
+        fps = (len(self._times) - 1) / self._times[-1] if self._times[-1] > 0 else 1.0
+        per = [angles[:, p, :, None] for p in range(angles.shape[1])]
+        swing = angles.std(axis=0) if len(angles) else np.zeros(angles.shape[1:])
+        return {
+            "lift": np.array([joint_lift(a, fps, self._beats) for a in per]),
+            "joints": -np.maximum(0.0, 1.0 - swing / JOINT_SWING).mean(axis=1),
+            "smooth": np.array([smoothness(a, fps) - 1.0 for a in per]),
+        }
 
 
 def _force_columns(figure: Figure, bodies: tuple[str, ...]) -> list[int]:
@@ -189,3 +239,16 @@ def _touching(sensors: FloatArray, columns: list[int]) -> npt.NDArray[np.bool_]:
     if not columns:
         return np.zeros(len(sensors), dtype=bool)
     return (sensors[:, columns] != 0.0).any(axis=1)
+
+
+def joint_lift(angles: npt.NDArray[np.floating], fps: float, beats: npt.ArrayLike) -> float:
+    """The beat lift of joint motion: ``beat_lift`` with (T, J, 1) angles as the moving points.
+
+    Args:
+        angles: (T, J, 1) joint angles, rad, at ``fps``.
+        fps: samples per second.
+        beats: (K,) beat times, s.
+    """
+    if len(angles) < 3:
+        return 0.0
+    return beat_lift(angles, fps, beats)

@@ -59,6 +59,7 @@ def render_figure(
     strobe: int = 8,
     style: Style | None = None,
     scene: TaskScene | None = None,
+    audio: str | os.PathLike[str] | None = None,
 ) -> Path:
     """Draw a figure's motion: an ``.mp4`` video, or a ``.png``/``.svg`` strobe picture.
 
@@ -73,6 +74,7 @@ def render_figure(
         strobe: poses in a still picture (evenly spaced, the last frame last).
         style: colours.
         scene: the task's marks.
+        audio: the song an ``.mp4`` plays along (a dance's), from its start.
 
     Returns:
         ``path``.
@@ -81,6 +83,9 @@ def render_figure(
     geometry = figure if isinstance(figure, FigureGeometry) else FigureGeometry.of(figure)
     painter = FigurePainter(geometry, traj, size=size, panel=panel, title=title, style=style,
                             still=suffix != ".mp4", scene=scene)  # fmt: skip
+    if suffix == ".mp4" and audio is not None:
+        step = frame_step(painter.fps, fps)
+        return write(Every(painter, step), path, kind=".mp4", audio=audio)
     if suffix == ".mp4":
         return render_figure_sequence([painter], path, fps=fps)
     frames = np.linspace(0, traj.n_frames - 1, max(1, strobe)).round().astype(int)

@@ -84,8 +84,9 @@ def draw_replays(
     pixels = (size, 3 * size // 4)
     geometry = FigureGeometry.of(first.figure)
     if len(replays) == 1:
+        audio = first.audio if _suffix(path) == ".mp4" else None
         return render_figure(geometry, first.trajectory, path, size=pixels, panel=first.panel,
-                             title=first.title, scene=first.scene)  # fmt: skip
+                             title=first.title, scene=first.scene, audio=audio)  # fmt: skip
     painters = [
         FigurePainter(
             geometry, r.trajectory, size=pixels, panel=r.panel, title=r.title, scene=r.scene

@@ -14,9 +14,13 @@ of a program (its S-expression).
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
 from typing import Any
 
-from sinews.control.gp import GENOME_CODEC
+import numpy as np
+import numpy.typing as npt
+
+from sinews.control.gp import BASIC_FUNCTIONS, GENOME_CODEC
 from sinews.errors import SinewsError
 from sinews.evolve import Evaluator, SerialEvaluator
 from sinews.experiments.evolution import (
@@ -25,6 +29,7 @@ from sinews.experiments.evolution import (
     continue_run,
     record_picks,
 )
+from sinews.experiments.figures import dance_seconds, dance_song
 from sinews.experiments.gp.score import GPScorer
 from sinews.experiments.gp.settings import GPSettings, Runtime
 from sinews.experiments.gp.simulate import measure_programs
@@ -53,7 +58,7 @@ __all__ = [
 
 CONTROLLER = "gp"
 TASKS: dict[str, dict[str, tuple[str, dict[str, Any]]]] = {
-    "luxo": {"hop": ("luxo-hop", {}), "limbo": ("luxo-limbo", {})},
+    "luxo": {"hop": ("luxo-hop", {}), "limbo": ("luxo-limbo", {}), "dance": ("luxo-dance", {})},
     "humanoid": {"reach": ("humanoid-reach", {}), "nose": ("humanoid-reach", {"target": "nose"})},
     "luxo3d": {"hop": ("luxo3d-hop", {}), "limbo": ("luxo3d-limbo", {})},
     "humanoid3d": {
@@ -79,11 +84,14 @@ DEFAULTS: dict[str, Any] = {
     "functions": list(GPSettings.functions),
     "erc_range": list(GPSettings.erc_range),
     "until": None,
+    "song": None,
 }
 """The paper's run (250 programs, 50 generations) unless told otherwise; the task's
 terms make the fitness, and style is phased in from a tenth of the run to its end."""
 _KIND_KEYS = ("task", "target", "pole_height", "seconds", "control_hz", "physics_hz",
-              "functions", "erc_range", "until")  # fmt: skip
+              "functions", "erc_range", "until", "song")  # fmt: skip
+DANCE_FUNCTIONS = (*BASIC_FUNCTIONS, "sin", "cos")
+"""A dance's default function set: the paper's, with ``sin`` and ``cos`` for the beat."""
 CLEAN_TERMS = ("head", "fallen", "touch")
 """Style terms an adequate program must not lose anything on."""
 
@@ -107,7 +115,9 @@ class GPKind:
     name = CONTROLLER
     subjects = tuple(TASKS)
     options = (
-        KindOption("task", str, "GP: the task, hop or limbo (Luxo), reach or nose (humanoid)."),
+        KindOption("task", str, "GP: the task, hop, limbo or dance (Luxo), reach or nose "
+                   "(humanoid)."),
+        KindOption("song", str, "GP dance: the song file, or demo:groove / demo:sway."),
         KindOption("target", str, "GP: where to go: the X, m (Luxo, default 1), or X,Z "
                    "(humanoid)."),
         KindOption("pole_height", float, "GP limbo: the bar's underside, m (default 80% of "
@@ -144,9 +154,14 @@ class GPKind:
         """
         check_options(options, DEFAULTS, CONTROLLER)
         given = {**file_values, **{k: v for k, v in options.items() if v is not None}}
+        song = dance_song(given)
         task = _task(subject, given)
+        if song is not None:
+            seconds = dance_seconds(song[1], given.get("seconds"), task.seconds)
+            task = _task(subject, {**given, "seconds": seconds})
         generations = int(given.get("generations") or DEFAULTS["generations"])
-        defaults = {**DEFAULTS, "fitness": list(task.weights),
+        functions = DANCE_FUNCTIONS if task.music else BASIC_FUNCTIONS
+        defaults = {**DEFAULTS, "fitness": list(task.weights), "functions": list(functions),
                     "phase_in": default_phase_in(generations)}  # fmt: skip
         config, extra = build_config(
             file_values=file_values, options=options, defaults=defaults,
@@ -157,16 +172,22 @@ class GPKind:
         until = extra.pop("until", None)
         if until is not None:
             until = check_number("until", until, 1e-4, 1.0)
+        song_setting = extra.pop("song", None)
+        named = {"song": song_setting} if song_setting else {}  # what `runs list` shows
+        heard = {} if song is None else {"song_path": str(song[0]), "song_hash": song[1].song_hash}
         settings = GPSettings.from_values(
-            {**extra, "task": task.name, "task_options": task.params, "seconds": task.seconds}
-        )
+            {**extra, "task": task.name, "task_options": task.params, "seconds": task.seconds,
+             **heard}
+        )  # fmt: skip
         check_strategy(self, config)
         Strategies(settings.genomes).new(config.to_dict(), config.seed)  # bad options fail here
         return store.create_run(
             f"{CONTROLLER}-{task.figure.name}",
-            config={**config.to_dict(), **settings.to_dict(), "until": until},
+            config={**config.to_dict(), **settings.to_dict(), "until": until, **named},
             seed=config.seed,
             genome_codec=GENOME_CODEC,
+            song_hash=settings.song_hash,
+            song_path=settings.song_path,
         )
 
     def run(
@@ -232,13 +253,15 @@ class GPKind:
         programs = settings.parse([ind.genome for ind in individuals])
         done = measure_programs(settings, programs, Runtime(record_hz=record_hz), record=True)
         scene = scene_of(settings.task)
+        names = list(settings.task.weights)
         return [
             Replay(
                 individual=ind,
                 trajectory=done.result.trajectory(k),
                 title=f"{settings.task.figure.name}, generation {ind.generation} #{ind.index}",
-                summary=f"{abs(float(done.result.distance[k])):.3f} m",
+                summary=_summary(names, done.terms[k], float(done.result.distance[k])),
                 distance=float(done.result.distance[k]),
+                audio=None if settings.song_path is None else Path(settings.song_path),
                 figure=settings.task.figure,
                 scene=scene,
             )
@@ -304,6 +327,13 @@ def _task(figure: str, given: Mapping[str, Any]) -> Task:
     if given.get("seconds") is not None:
         options["seconds"] = _number(given["seconds"], "seconds")
     return make_task(name, **options)
+
+
+def _summary(names: list[str], terms: npt.NDArray[np.float64], distance: float) -> str:
+    """What the CLI says of a replayed program: the dance's beat lift, or the distance."""
+    if names[0] == "lift":
+        return f"beat lift {float(terms[0]):.3f}"
+    return f"{abs(distance):.3f} m"
 
 
 def _number(value: object, name: str) -> float:

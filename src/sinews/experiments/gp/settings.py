@@ -18,7 +18,9 @@ from typing import Any
 from sinews.control.gp import BASIC_FUNCTIONS, PrimitiveSet, Program, parse_program
 from sinews.errors import SinewsError
 from sinews.evolve import GenomeSpace
+from sinews.experiments.figures import heard_song
 from sinews.figures.tasks import Task, make_task
+from sinews.music.features import MusicFeatures
 
 __all__ = ["GPSettings", "Runtime"]
 
@@ -35,6 +37,8 @@ class GPSettings:
         physics_hz: physics steps per simulated second.
         functions: the function set.
         erc_range: the range of the ephemeral random constants.
+        song_path: the song file a dance hears (None: no song).
+        song_hash: its SHA-256, checked whenever the song is read again.
     """
 
     task_name: str
@@ -44,6 +48,8 @@ class GPSettings:
     physics_hz: int = 1000
     functions: tuple[str, ...] = BASIC_FUNCTIONS
     erc_range: tuple[float, float] = (-1.0, 1.0)
+    song_path: str | None = None
+    song_hash: str | None = None
 
     @classmethod
     def from_values(cls, values: Mapping[str, Any]) -> GPSettings:
@@ -62,6 +68,8 @@ class GPSettings:
                 physics_hz=int(values["physics_hz"]),
                 functions=tuple(str(f) for f in values["functions"]),
                 erc_range=(low, high),
+                song_path=_optional_text(values.get("song_path")),
+                song_hash=_optional_text(values.get("song_hash")),
             )
         except (KeyError, TypeError, ValueError):
             raise SinewsError("malformed GP run settings") from None
@@ -72,6 +80,8 @@ class GPSettings:
         if settings.physics_hz % settings.control_hz:
             raise SinewsError("control_hz must divide physics_hz")
         _ = settings.pset  # an unknown function or bad constants fail here
+        if bool(settings.task.music) != (settings.song_path is not None):
+            raise SinewsError("a dance needs a song (--song), and only a dance hears one")
         return settings
 
     def to_dict(self) -> dict[str, Any]:
@@ -84,6 +94,8 @@ class GPSettings:
             "physics_hz": self.physics_hz,
             "functions": list(self.functions),
             "erc_range": list(self.erc_range),
+            "song_path": self.song_path,
+            "song_hash": self.song_hash,
         }
 
     @cached_property
@@ -98,6 +110,15 @@ class GPSettings:
         return PrimitiveSet(self.task.terminals, functions=self.functions,
                             erc_range=self.erc_range)  # fmt: skip
 
+    @cached_property
+    def music(self) -> MusicFeatures | None:
+        """The song's analysis (None without a song).
+
+        Raises:
+            SinewsError: the song cannot be read, or has changed since the run started.
+        """
+        return None if self.song_path is None else heard_song(self.song_path, self.song_hash)
+
     @property
     def genomes(self) -> GenomeSpace:
         """The run's programs: its primitives, one tree per driven joint."""
@@ -106,6 +127,10 @@ class GPSettings:
     def parse(self, texts: Sequence[str]) -> list[Program]:
         """Stored S-expressions as programs of this run."""
         return [parse_program(text, self.pset) for text in texts]
+
+
+def _optional_text(value: object) -> str | None:
+    return None if value is None else str(value)
 
 
 @dataclass(frozen=True)

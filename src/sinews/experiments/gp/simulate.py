@@ -17,11 +17,13 @@ import numpy as np
 import numpy.typing as npt
 
 from sinews.control.gp import GPController, Program, Wiring
+from sinews.control.music_input import MusicInput, music_table
+from sinews.control.protocol import Controller
 from sinews.experiments.gp.settings import GPSettings, Runtime
 from sinews.figures import RolloutResult, rollout
 from sinews.figures.tasks import Task, TaskMeter
 
-__all__ = ["Measured", "measure_programs", "wiring"]
+__all__ = ["Measured", "measure_programs", "wiring", "with_music"]
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -68,11 +70,26 @@ def measure_programs(
         record: keep the motion (for trajectories).
     """
     task, runtime = settings.task, runtime or Runtime()
-    controller = GPController(programs, wiring(task), parallel=runtime.parallel_interpreter)
-    meter = TaskMeter(task, len(programs))
+    programs_controller = GPController(
+        programs, wiring(task), parallel=runtime.parallel_interpreter
+    )
+    controller, beats = with_music(settings, programs_controller)
+    meter = TaskMeter(task, len(programs), beats=beats)
     result = rollout(
         task.figure, controller, len(programs), task.seconds,
         control_hz=settings.control_hz, physics_hz=settings.physics_hz, record=record,
         record_hz=runtime.record_hz, nthread=runtime.nthread, observer=meter,
     )  # fmt: skip
-    return Measured(meter.terms(), result.failed, controller.nonfinite.copy(), result)
+    return Measured(meter.terms(), result.failed, programs_controller.nonfinite.copy(), result)
+
+
+def with_music(
+    settings: GPSettings, controller: GPController
+) -> tuple[Controller, FloatArray | None]:
+    """The controller that hears the run's song (itself without one), and the song's beats."""
+    music = settings.music
+    if music is None:
+        return controller, None
+    n_ticks = round(settings.task.seconds * settings.control_hz)
+    table = music_table(music, settings.control_hz, n_ticks)
+    return MusicInput(controller, table, settings.control_hz), music.beats

@@ -25,7 +25,14 @@ from sinews.experiments.evolution import (
     continue_run,
     record_picks,
 )
-from sinews.experiments.figures import FIGURES, make_figure, read_keep_file
+from sinews.experiments.figures import (
+    FIGURES,
+    dance_seconds,
+    dance_song,
+    make_figure,
+    read_keep_file,
+)
+from sinews.experiments.gp.run import default_phase_in
 from sinews.experiments.kinds import (
     KindOption,
     Replay,
@@ -34,15 +41,19 @@ from sinews.experiments.kinds import (
     run_of,
 )
 from sinews.experiments.run_config import EvolutionConfig, build_config
+from sinews.experiments.springnet.dance import DANCE_FIGURES
 from sinews.experiments.springnet.score import SpringNetScorer
 from sinews.experiments.springnet.settings import TERMS, SpringNetSettings
 from sinews.experiments.springnet.simulate import simulate
+from sinews.figures.tasks import make_task
 from sinews.render.figure import NetPanel
 from sinews.store import Individual, RunInfo, RunStore
 
 __all__ = ["CONTROLLER", "DEFAULTS", "KIND", "SpringNetKind"]
 
 CONTROLLER = "springnet"
+DANCE_SECONDS = 10.0
+"""A dance's default length (or the whole song if shorter)."""
 DEFAULTS: dict[str, Any] = {
     "population": 2000,
     "generations": 20,
@@ -57,9 +68,11 @@ DEFAULTS: dict[str, Any] = {
     "physics_hz": None,
     "control_hz": 100,
     "keep": {},
+    "task": None,
+    "song": None,
 }
 """The paper's largest run (20 generations of 2000 nets, 5 s trials) unless told otherwise."""
-_KIND_KEYS = ("figure", "seconds", "masses", "physics_hz", "control_hz", "keep")
+_KIND_KEYS = ("figure", "seconds", "masses", "physics_hz", "control_hz", "keep", "task", "song")
 
 
 class SpringNetKind:
@@ -73,6 +86,9 @@ class SpringNetKind:
         KindOption("keep", Path, "Spring nets' hand picks: a file of lines 'GENERATION: INDEX "
                    "INDEX ...' naming individuals that survive that generation whatever their "
                    "rank."),
+        KindOption("task", str, "Spring nets: dance (Luxo; the net entrained by --song), or "
+                   "none for the paper's distance."),
+        KindOption("song", str, "Spring-net dance: the song file, or demo:groove / demo:sway."),
     )  # fmt: skip
     defaults = DEFAULTS
     summary = "spring nets that move it as far as they can (|x_end - x_start|)"
@@ -104,14 +120,24 @@ class SpringNetKind:
         check_options(options, DEFAULTS, CONTROLLER)
         if isinstance(options.get("keep"), str | Path):
             options = {**options, "keep": read_keep_file(options["keep"])}
+        given = {**file_values, **{k: v for k, v in options.items() if v is not None}}
+        song = dance_song(given)
+        defaults, terms = (DEFAULTS, TERMS) if song is None else dance_defaults(subject, given)
+        if song is not None:
+            options = {
+                **options,
+                "seconds": dance_seconds(song[1], given.get("seconds"), DANCE_SECONDS),
+            }
         config, extra = build_config(
             file_values=file_values,
             options={**options, "figure": subject},
-            defaults=DEFAULTS,
-            term_defaults=TERMS,
+            defaults=defaults,
+            term_defaults=terms,
             kind_keys=_KIND_KEYS,
         )
-        settings = SpringNetSettings.from_values(extra)
+        extra.pop("song", None)
+        heard = {} if song is None else {"song_path": str(song[0]), "song_hash": song[1].song_hash}
+        settings = SpringNetSettings.from_values({**extra, **heard})
         keep = _keep(extra.get("keep") or {})
         if any(i >= config.population for chosen in keep.values() for i in chosen):
             raise SinewsError(f"keep: indices must be below the population ({config.population})")
@@ -119,9 +145,16 @@ class SpringNetKind:
         Strategies(_genomes(settings)).new(config.to_dict(), config.seed)  # bad options fail here
         return store.create_run(
             f"{CONTROLLER}-{settings.figure}",
-            config={**config.to_dict(), **settings.to_dict(), "keep": keep},
+            config={
+                **config.to_dict(),
+                **settings.to_dict(),
+                "keep": keep,
+                **({"song": given["song"]} if song is not None else {}),  # for `runs list`
+            },
             seed=config.seed,
             genome_codec="float64",
+            song_hash=settings.song_hash,
+            song_path=settings.song_path,
         )
 
     def run(
@@ -181,7 +214,7 @@ class SpringNetKind:
         genes = np.stack([np.asarray(ind.genome, dtype=np.float64) for ind in individuals])
         result, net = simulate(settings, genes, record_hz=record_hz)
         assert net is not None
-        nets = settings.encoding.decode(genes)
+        nets = settings.encoding.decode(genes[:, : settings.encoding.size])
         figure = result.figure
         outputs = np.arange(figure.n_actuators) % settings.masses
         return [
@@ -191,6 +224,7 @@ class SpringNetKind:
                 title=f"{figure.name}, generation {ind.generation} #{ind.index}",
                 summary=f"{abs(float(result.distance[k])):.3f} m",
                 distance=float(result.distance[k]),
+                audio=None if settings.song_path is None else Path(settings.song_path),
                 figure=figure,
                 panel=NetPanel(
                     positions=net[:, k],
@@ -233,7 +267,21 @@ KIND = SpringNetKind()
 
 
 def _genomes(settings: SpringNetSettings) -> GenomeSpace:
-    return GenomeSpace(size=settings.encoding.size)
+    return GenomeSpace(size=settings.genome_size)
+
+
+def dance_defaults(
+    figure: str, given: Mapping[str, Any]
+) -> tuple[dict[str, Any], dict[str, float]]:
+    """A dancing net run's defaults and term weights: the dance's terms phased in as in
+    GP runs, 250 nets, the float GA (Alton's knows only the net's genes)."""
+    if figure not in DANCE_FIGURES:
+        raise SinewsError(f"spring nets dance only the {', '.join(DANCE_FIGURES)}")
+    weights = dict(make_task(DANCE_FIGURES[figure]).weights)
+    generations = int(given.get("generations") or DEFAULTS["generations"])
+    defaults = {**DEFAULTS, "population": 250, "strategy": "ga", "fitness": list(weights),
+                "phase_in": default_phase_in(generations)}  # fmt: skip
+    return defaults, weights
 
 
 def _settings(info: RunInfo) -> SpringNetSettings:

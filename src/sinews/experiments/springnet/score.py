@@ -18,8 +18,9 @@ from sinews.evolve import Evaluator, FitnessSpec, SerialEvaluator
 from sinews.experiments.evolution import Scores
 from sinews.experiments.figures import distance_travelled
 from sinews.experiments.score_memory import ChunkContext, ScoreMemory, score_in_chunks
-from sinews.experiments.springnet.settings import TERMS, SpringNetSettings
+from sinews.experiments.springnet.settings import SpringNetSettings
 from sinews.experiments.springnet.simulate import simulate
+from sinews.figures.terms import TaskMeter
 
 __all__ = ["SpringNetScorer", "score_chunk"]
 
@@ -30,11 +31,17 @@ def score_chunk(context: ChunkContext[SpringNetSettings], genes: FloatArray) -> 
     """The evaluator's work unit: simulate a chunk of (k, G) nets and measure the distance.
 
     Returns:
-        Scores with one term column, ``distance`` (m); a net's numbers depend
-        only on its genes and the settings.
+        Scores with one term column, ``distance`` (m), or a dance's terms; a net's
+        numbers depend only on its genes and the settings.
     """
-    result, _ = simulate(context.settings, genes, nthread=context.nthread)
-    return Scores(terms=distance_travelled(result)[:, None], failed=result.failed.copy())
+    settings = context.settings
+    if settings.dance is None:
+        result, _ = simulate(settings, genes, nthread=context.nthread)
+        return Scores(terms=distance_travelled(result)[:, None], failed=result.failed.copy())
+    assert settings.music is not None
+    meter = TaskMeter(settings.dance, len(genes), beats=settings.music.beats)
+    result, _ = simulate(settings, genes, nthread=context.nthread, observer=meter)
+    return Scores(terms=meter.terms(), failed=result.failed.copy())
 
 
 @dataclass(eq=False)
@@ -54,8 +61,8 @@ class SpringNetScorer:
 
     @property
     def term_names(self) -> tuple[str, ...]:
-        """``("distance",)``."""
-        return tuple(TERMS)
+        """``("distance",)``, or a dance's terms."""
+        return tuple(self.settings.terms)
 
     def __call__(self, genomes: FloatArray, seeds: npt.NDArray[np.int64]) -> Scores:
         """Score (P, G) genes (the seeds are unused: the simulation has no noise)."""

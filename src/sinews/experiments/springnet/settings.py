@@ -4,17 +4,23 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
+from sinews.control.music_input import MusicInput, music_table
+from sinews.control.protocol import Controller
 from sinews.control.springnet import SpringNetController
 from sinews.errors import SinewsError
 from sinews.evolve.alton import SpringNetEncoding
-from sinews.experiments.figures import FIGURES, make_figure
+from sinews.experiments.figures import FIGURES, heard_song, make_figure
+from sinews.experiments.springnet.dance import DANCE_FIGURES, DRIVE, drive_weights
 from sinews.figures import Figure
+from sinews.figures.tasks import Task, make_task
 from sinews.limits import MAX_MASSES, check_whole
+from sinews.music.features import MusicFeatures
 
 __all__ = ["NET_TIME_STEP", "PHYSICS_HZ", "TERMS", "SpringNetSettings"]
 
@@ -39,6 +45,10 @@ class SpringNetSettings:
         masses: n, masses per net.
         physics_hz: physics steps per second.
         control_hz: controller ticks per second (divides ``physics_hz``).
+        task: ``"dance"`` for nets entrained by a song (see
+            `sinews.experiments.springnet.dance`), or None for the paper's distance.
+        song_path: a dance's song file.
+        song_hash: its SHA-256, checked whenever the song is read again.
     """
 
     figure: str
@@ -46,6 +56,9 @@ class SpringNetSettings:
     masses: int
     physics_hz: int
     control_hz: int = 100
+    task: str | None = None
+    song_path: str | None = None
+    song_hash: str | None = None
 
     @classmethod
     def from_values(cls, values: Mapping[str, Any]) -> SpringNetSettings:
@@ -64,9 +77,18 @@ class SpringNetSettings:
             masses=check_whole("masses", masses, 2, MAX_MASSES),
             physics_hz=_whole(values.get("physics_hz") or PHYSICS_HZ[figure], "physics_hz", 1),
             control_hz=_whole(values.get("control_hz"), "control_hz", 1),
+            task=values.get("task"),
+            song_path=values.get("song_path"),
+            song_hash=values.get("song_hash"),
         )
         if settings.physics_hz % settings.control_hz:
             raise SinewsError("control_hz must divide physics_hz")
+        if settings.task not in (None, "dance"):
+            raise SinewsError(f"spring nets have no task {settings.task!r}; only dance")
+        if settings.task is not None and figure not in DANCE_FIGURES:
+            raise SinewsError(f"spring nets dance only the {', '.join(DANCE_FIGURES)}")
+        if (settings.task is None) != (settings.song_path is None):
+            raise SinewsError("a dance needs a song (--song), and only a dance hears one")
         return settings
 
     def to_dict(self) -> dict[str, Any]:
@@ -77,7 +99,33 @@ class SpringNetSettings:
             "masses": self.masses,
             "physics_hz": self.physics_hz,
             "control_hz": self.control_hz,
+            "task": self.task,
+            "song_path": self.song_path,
+            "song_hash": self.song_hash,
         }
+
+    @cached_property
+    def dance(self) -> Task | None:
+        """The dance the nets are rated by (None: the paper's distance)."""
+        if self.task is None:
+            return None
+        return make_task(DANCE_FIGURES[self.figure], seconds=self.seconds)
+
+    @cached_property
+    def music(self) -> MusicFeatures | None:
+        """The song's analysis (None without a song); see `heard_song`."""
+        return None if self.song_path is None else heard_song(self.song_path, self.song_hash)
+
+    @property
+    def terms(self) -> dict[str, float]:
+        """The fitness terms and their full weights."""
+        return TERMS if self.dance is None else dict(self.dance.weights)
+
+    @property
+    def genome_size(self) -> int:
+        """Genes per net: the net's, then (for a dance) its drive weights."""
+        drive = 0 if self.task is None else self.masses * len(DRIVE)
+        return self.encoding.size + drive
 
     @property
     def encoding(self) -> SpringNetEncoding:
@@ -85,16 +133,29 @@ class SpringNetSettings:
         return SpringNetEncoding(self.masses)
 
     def controller(self, figure: Figure, genes: FloatArray) -> SpringNetController:
-        """The controller of (P, G) genes driving ``figure``."""
+        """The controller of (P, G) genes driving ``figure`` (a dance's reads sensors and
+        music: see `with_music`)."""
         low, high = figure.joint_range[:, 0], figure.joint_range[:, 1]
         gain = np.where(np.isfinite(high - low), 0.5 * (high - low), 1.0)
+        size = self.encoding.size
+        drive = None
+        if self.task is not None:
+            drive = drive_weights(genes[:, size:], self.masses, figure.n_sensors)
         return SpringNetController(
-            self.encoding.decode(genes),
+            self.encoding.decode(genes[:, :size]),
             outputs=np.arange(figure.n_actuators) % self.masses,
             gain=gain,
             offset=figure.neutral,
             ts=NET_TIME_STEP,
+            input_weights=drive,
         )
+
+    def with_music(self, controller: SpringNetController) -> Controller:
+        """The controller hearing the song (for a dance), else itself."""
+        if self.music is None:
+            return controller
+        table = music_table(self.music, self.control_hz, round(self.seconds * self.control_hz))
+        return MusicInput(controller, table, self.control_hz)
 
 
 def _number(value: object, name: str) -> float:

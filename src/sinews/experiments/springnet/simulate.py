@@ -14,7 +14,7 @@ import numpy.typing as npt
 
 from sinews.experiments.figures import make_figure
 from sinews.experiments.springnet.settings import SpringNetSettings
-from sinews.figures import RolloutResult, rollout
+from sinews.figures import Observer, RolloutResult, rollout
 
 __all__ = ["simulate"]
 
@@ -27,6 +27,7 @@ def simulate(
     *,
     record_hz: float | None = None,
     nthread: int | None = None,
+    observer: Observer | None = None,
 ) -> tuple[RolloutResult, FloatArray | None]:
     """Simulate (P, G) nets driving the run's figure in one batched rollout.
 
@@ -35,6 +36,7 @@ def simulate(
         genes: (P, G) genes in [0, 1].
         record_hz: record the motion (and the nets) at this frame rate; None: don't.
         nthread: MuJoCo threads (None: every CPU).
+        observer: also shown every tick (e.g. a dance's `TaskMeter`).
 
     Returns:
         The rollout and, when recording, (T, P, n) every net's mass positions
@@ -45,13 +47,16 @@ def simulate(
     ticks: list[FloatArray] = []
 
     def watch(t: float, sensors: FloatArray, targets: FloatArray) -> None:
-        ticks.append(controller.x.copy())
+        if record_hz is not None:
+            ticks.append(controller.x.copy())
+        if observer is not None:
+            observer(t, sensors, targets)
 
     result = rollout(
-        figure, controller, len(genes), settings.seconds,
+        figure, settings.with_music(controller), len(genes), settings.seconds,
         control_hz=settings.control_hz, physics_hz=settings.physics_hz,
         record=record_hz is not None, record_hz=record_hz or 60.0, nthread=nthread,
-        observer=None if record_hz is None else watch,
+        observer=None if record_hz is None and observer is None else watch,
     )  # fmt: skip
     if result.frame_time is None or not ticks:
         return result, None

@@ -1,0 +1,87 @@
+"""Entrained spring nets: the music's force on the masses, the net's period, a dance run."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pytest.importorskip("mujoco")
+
+from dance_helpers import click_song
+from sinews.cli import main
+from sinews.control.music_input import MUSIC_TERMINALS
+from sinews.experiments.springnet.dance import DRIVE, DRIVE_FORCE, dominant_period, drive_weights
+from sinews.experiments.springnet.settings import SpringNetSettings
+from sinews.experiments.springnet.simulate import simulate
+from sinews.music import analyse_file
+from sinews.store import RunStore
+
+
+@pytest.fixture(scope="module")
+def song(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Path]:
+    """A 4 s drum track at 120 BPM, with the XDG folders (the analysis cache) beside it."""
+    where = tmp_path_factory.mktemp("net_dance")
+    with pytest.MonkeyPatch.context() as patch:
+        for name in ("XDG_CACHE_HOME", "XDG_DATA_HOME"):
+            patch.setenv(name, str(where / name.lower()))
+        yield click_song(where / "song.wav", seconds=4.0, bpm=120.0)
+
+
+def test_drive_genes_weigh_only_the_drive_columns() -> None:
+    genes = np.array([[1.0, 0.0, 0.75, 0.5]])  # 2 masses x 2 drive columns
+    weights = drive_weights(genes, 2, 5)
+    assert weights.shape == (1, 2, 5 + len(MUSIC_TERMINALS))
+    columns = [5 + MUSIC_TERMINALS.index(name) for name in DRIVE]
+    expected = np.array([[1.0, -1.0], [0.5, 0.0]]) * DRIVE_FORCE
+    np.testing.assert_allclose(weights[0][:, columns], expected)
+    weights[0][:, columns] = 0.0
+    assert not weights.any()
+
+
+def test_dominant_period_finds_the_strongest_swing() -> None:
+    t = np.arange(0, 10, 0.01)
+    x = np.sin(2 * np.pi * t / 0.5) + 0.3 * np.sin(2 * np.pi * t / 1.7)
+    assert dominant_period(x, 100) == pytest.approx(0.5, rel=0.01)
+    assert dominant_period(np.stack([x, 2 * np.sin(2 * np.pi * t / 1.7)], axis=1), 100) == (
+        pytest.approx(1.7, rel=0.02)
+    )
+    assert dominant_period(np.ones(300), 100) == np.inf
+
+
+def test_a_driven_net_swings_at_the_beat_and_a_free_one_at_its_own_period(song: Path) -> None:
+    music = analyse_file(song)
+    period = 60.0 / music.tempo_bpm
+    assert period == pytest.approx(0.5, rel=0.03)
+    settings = SpringNetSettings.from_values({"figure": "luxo", "seconds": 4.0, "masses": 3,
+        "control_hz": 100, "task": "dance", "song_path": str(song),
+        "song_hash": music.song_hash})  # fmt: skip
+    size, n = settings.encoding.size, settings.masses
+    genes = np.full((3, settings.genome_size), 0.5)  # every mass at 0, no drive
+    genes[:, n : size - n] = 0.0  # no springs
+    genes[0, size:] = [0.8, 0.5, 0.5, 0.5, 0.5, 0.5]  # mass 0 feels the beat's sine
+    genes[2, n : size - n] = 0.05  # springs of 5
+    genes[2, size - n : size] = [0.2, 0.8, 0.5]  # masses apart: the net swings by itself
+    _, net = simulate(settings, genes, record_hz=100.0)
+    assert net is not None
+    driven, still, free = (dominant_period(net[:, k], 100.0) for k in range(3))
+    assert driven == pytest.approx(period, rel=0.05)
+    assert still == np.inf and not net[:, 1].any()
+    assert abs(free / period - 1) > 0.5
+
+
+def test_a_net_dance_runs_and_is_rated_by_the_beat(song: Path, tmp_path: Path) -> None:
+    db = tmp_path / "runs.db"
+    options = ["--controller", "springnet", "--task", "dance", "--song", str(song),
+               "--population", "6", "--generations", "2", "--seconds", "2",
+               "--db", str(db)]  # fmt: skip
+    assert main(["evolve", "luxo", *options]) == 0
+    with RunStore(db) as store:
+        (info,) = store.runs()
+        individuals = store.individuals(info.id)
+    assert info.config["task"] == "dance" and info.config["strategy"]["name"] == "ga"
+    assert info.song_hash == analyse_file(song).song_hash
+    assert next(iter(individuals[0].terms or {})) == "lift"
+    assert len(individuals[0].genome) == SpringNetSettings.from_values(info.config).genome_size

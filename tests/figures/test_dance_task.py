@@ -1,0 +1,75 @@
+"""The dance task: music terminals in its input map, and its terms on hand-made motion."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+pytest.importorskip("mujoco")
+
+from sinews.control.music_input import MUSIC_TERMINALS
+from sinews.figures import FigureError
+from sinews.figures.tasks import TaskMeter, luxo_dance
+
+BEATS = np.arange(0.25, 4.0, 0.5)
+HZ = 100
+
+
+def test_the_dance_hears_the_music_after_the_sensors() -> None:
+    task = luxo_dance()
+    assert next(iter(task.weights)) == "lift"
+    assert task.terminals[-len(MUSIC_TERMINALS) :] == MUSIC_TERMINALS
+    weights, offset = task.input_map()
+    n = task.figure.n_sensors
+    assert weights.shape == (n + len(MUSIC_TERMINALS), len(task.terminals))
+    assert np.array_equal(weights[n:, -len(MUSIC_TERMINALS) :], np.eye(len(MUSIC_TERMINALS)))
+    assert not weights[n:, : -len(MUSIC_TERMINALS)].any() and not offset.any()
+
+
+def test_a_dance_is_not_measured_without_beats() -> None:
+    with pytest.raises(FigureError, match="beats"):
+        TaskMeter(luxo_dance(), 1)
+
+
+def measure(angles: np.ndarray, root_x: np.ndarray | None = None) -> dict[str, np.ndarray]:
+    """The dance's terms of (T, P, 3) driven angles at HZ (root at 0 unless given)."""
+    task = luxo_dance(seconds=(len(angles) - 1) / HZ)
+    figure = task.figure
+    meter = TaskMeter(task, angles.shape[1], beats=BEATS)
+    sensors = np.zeros((angles.shape[1], figure.n_sensors))
+    columns = [figure.sensor_index(f"q_{j}") for j in task.joints]
+    targets = np.zeros((angles.shape[1], figure.n_actuators))
+    for k, row in enumerate(angles):
+        sensors[:, columns] = row
+        if root_x is not None:
+            sensors[:, figure.sensor_index("root_x")] = root_x[k]
+        meter(k / HZ, sensors, targets)
+    return dict(zip(task.weights, meter.terms().T, strict=True))
+
+
+def swing(phase: float, amplitude: float = 0.3) -> np.ndarray:
+    """(T,) an angle swinging once a beat, at rest at its turns: on the beats and halfway
+    between them, moved by ``phase`` of a beat."""
+    t = np.arange(4 * HZ + 1) / HZ
+    return amplitude * (1.0 - np.cos(2 * np.pi * (t - 0.25 - phase * 0.5) / 0.5))
+
+
+def test_pausing_on_the_beat_lifts_and_off_it_does_not() -> None:
+    on, off = swing(0.0), swing(0.25)  # turns on the beats; on quarter beats
+    angles = np.stack([np.stack([on] * 3, axis=1), np.stack([off] * 3, axis=1)], axis=1)
+    terms = measure(angles)
+    assert terms["lift"][0] > 0.5
+    assert terms["lift"][1] < 0.1
+    assert terms["joints"].tolist() == [0.0, 0.0]  # every joint swings 0.21 rad
+    assert (terms["smooth"] > -0.35).all()  # a 2 Hz swing keeps 71 % of its energy below 4 Hz
+
+
+def test_the_style_terms_see_idle_joints_jerks_and_wandering() -> None:
+    t = np.arange(4 * HZ + 1)
+    idle = np.zeros((len(t), 3))
+    idle[:, 0] = swing(0.0)
+    jerky = np.stack([0.2 * (t % 6 < 3)] * 3, axis=1).astype(np.float64)
+    terms = measure(np.stack([idle, jerky], axis=1), root_x=t / len(t))
+    assert terms["joints"][0] == pytest.approx(-2 / 3)  # two of three joints never move
+    assert terms["smooth"][1] < -0.5  # a 17 Hz square wave
+    assert terms["spot"] == pytest.approx(-np.mean(t / len(t)))
