@@ -37,13 +37,17 @@ def test_humanoid_pack_round_trips_within_a_millimetre() -> None:
     model = humanoid3d_touch().figure.model()
     frames = np.tile(model.qpos0, (5, 1))
     shapes = shapes_of(model, frames)
-    header, arrays = decode_pack(encode_shapes(shapes, 30.0, title="touch"))
+    frames[:, 2] -= 0.3  # a second individual, crouched 0.3 m lower
+    lower = shapes_of(model, frames)
+    header, arrays = decode_pack(encode_shapes([shapes, lower], 30.0, title="touch"))
     assert header["title"] == "touch" and header["fps"] == 30.0
     assert header["kinds"] == list(shapes.kinds) and len(header["sizes"]) == len(shapes.kinds)
-    assert arrays["positions"].shape == (5, len(shapes.kinds), 3)
-    np.testing.assert_allclose(arrays["positions"] * header["scale"], shapes.positions, atol=6e-4)
+    assert arrays["positions"].shape == (2, 5, len(shapes.kinds), 3)
+    metres = arrays["positions"] * header["scale"]
+    np.testing.assert_allclose(metres[0], shapes.positions, atol=6e-4)
+    np.testing.assert_allclose(metres[1], lower.positions, atol=6e-4)
     quaternions = arrays["quaternions"] / QUATERNION_SCALE
-    np.testing.assert_allclose(quaternions, shapes.quaternions, atol=1e-4)
+    np.testing.assert_allclose(quaternions[1], lower.quaternions, atol=1e-4)
 
 
 def test_bad_recordings_are_refused() -> None:

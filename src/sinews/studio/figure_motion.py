@@ -4,8 +4,9 @@ A generation is replayed by its run kind (`RunKind.replay`, one batch, exactly
 as it was scored), every frame's geoms placed by forward kinematics
 (`FigureGeometry.poses`) and sent as int16 millimetres (`sinews.studio.pack`):
 a cell then only draws capsules, boxes and spheres where the pack says. The
-header names the drawer (``"planar"``: geoms in the x-z plane), so a 3D drawer
-can take other packs. A pack holds, beside the poses, what a cell is labelled
+header names the drawer: ``"planar"`` (geoms in the x-z plane) or, for a 3D
+figure, ``"solid"`` (every shape's 3D pose, `sinews.studio.shapes_pack`, drawn
+with three.js). A pack holds, beside the poses, what a cell is labelled
 with (fitness and its terms), the task's scene (`sinews.render.figure_scene`)
 and each controller: a spring net's masses, springs and motion (the net
 panel) or a GP program's S-expression.
@@ -19,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from sinews.experiments.kinds import Replay
+from sinews.figures.geoms import shapes_of
 from sinews.render.figure_geometry import FigureGeometry
 from sinews.render.figure_panel import NetPanel
 from sinews.render.style import default_colors
@@ -26,6 +28,7 @@ from sinews.store import Individual
 from sinews.studio.figure_runs import MAX_SHOWN, FigureRun, FigureRunError, FigureRuns
 from sinews.studio.motion import Recent
 from sinews.studio.pack import MILLIMETRES, encode_pack, millimetres
+from sinews.studio.shapes_pack import encode_shapes
 
 __all__ = ["POSE_HZ", "FigureMotion"]
 
@@ -86,6 +89,19 @@ class FigureMotion:
 
 def _pack(run_id: int, generation: int, replays: list[Replay], programs: list[str | None]) -> bytes:
     figure = replays[0].figure
+    if figure.root == "free":
+        model = figure.model()
+        return encode_shapes(
+            [shapes_of(model, np.asarray(r.trajectory.qpos)) for r in replays],
+            replays[0].trajectory.fps,
+            run=run_id,
+            generation=generation,
+            drawer="solid",
+            frames=replays[0].trajectory.n_frames,
+            figure=figure.name,
+            scene=None,
+            individuals=[_individual(r, p) for r, p in zip(replays, programs, strict=True)],
+        )
     geometry = FigureGeometry.of(figure)
     qpos = [np.asarray(r.trajectory.qpos) for r in replays]  # figures' trajectories carry it
     poses = [geometry.poses(q) for q in qpos]

@@ -30,6 +30,7 @@ __all__ = [
     "MAX_SHOWN",
     "PLANAR",
     "POPULATIONS",
+    "SHOWN",
     "FigureRun",
     "FigureRuns",
     "max_picks",
@@ -37,7 +38,9 @@ __all__ = [
 ]
 
 PLANAR = ("luxo", "snake", "humanoid")
-"""The figures the page draws (the 3D ones need a 3D cell drawer)."""
+"""The figures the page's form starts runs of."""
+SHOWN = (*PLANAR, "luxo3d", "humanoid3d")
+"""The figures whose runs the page opens (3D runs are started with ``sinews evolve``)."""
 CONTROLLERS = ("springnet", "gp")
 """The run kinds the page opens."""
 POPULATIONS = range(5, 26)
@@ -140,9 +143,9 @@ class FigureRuns:
         controller, _, figure = info.kind.partition("-")
         if controller not in CONTROLLERS:
             raise FigureRunError(f"run {run_id} evolves {info.kind}; this page shows figures")
-        if figure not in PLANAR:
-            raise FigureRunError(f"run {run_id} is a 3D figure ({figure}); the page draws "
-                                 "planar figures")  # fmt: skip
+        if figure not in SHOWN:
+            raise FigureRunError(f"run {run_id} drives a {figure}; the page shows "
+                                 f"{', '.join(SHOWN)}")  # fmt: skip
         if int(info.config["population"]) > MAX_SHOWN:
             raise FigureRunError(f"run {run_id} has more individuals than the page shows "
                                  f"({MAX_SHOWN})")  # fmt: skip

@@ -1,4 +1,4 @@
-"""A 3D figure's replay as a binary pack for the page's three.js view (``static/js/view3d.js``).
+"""3D figures' replays as a binary pack for the figure page's three.js drawer (solid.js).
 
 The page draws shapes, not physics: `sinews.figures.geoms.Shapes` says what
 each shape is and where it is in every frame. Positions travel as int16
@@ -8,6 +8,8 @@ a 31-DOF humanoid over 5 s at 30 frames/s is about 40 kB.
 """
 
 from __future__ import annotations
+
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -20,27 +22,30 @@ QUATERNION_SCALE = 32767
 """Units per 1.0 of an int16 quaternion component (the header's ``quaternion_scale``)."""
 
 
-def encode_shapes(shapes: Shapes, fps: float, **header: object) -> bytes:
-    """One pack of ``shapes`` played at ``fps`` with further ``header`` fields for the page.
+def encode_shapes(shapes: Sequence[Shapes], fps: float, **header: object) -> bytes:
+    """One pack of P individuals' ``shapes`` (one model, T frames each) played at ``fps``.
 
-    Header: ``fps``, ``kinds`` (G names), ``sizes`` (G × 3 m), ``colours`` (G × 4),
-    ``scale`` (m per position unit), ``quaternion_scale``. Arrays: ``positions``
-    (T, G, 3) int16 mm, ``quaternions`` (T, G, 4) int16 (w, x, y, z).
+    Header: ``header``'s fields and ``fps``, ``kinds`` (G names), ``sizes`` (G × 3 m),
+    ``colours`` (G × 4), ``scale`` (m per position unit), ``quaternion_scale``.
+    Arrays: ``positions`` (P, T, G, 3) int16 mm, ``quaternions`` (P, T, G, 4) int16
+    (w, x, y, z).
     """
-    unit = np.linalg.norm(shapes.quaternions, axis=-1, keepdims=True)
-    quaternions = np.rint(shapes.quaternions / np.maximum(unit, 1e-9) * QUATERNION_SCALE)
+    first = shapes[0]
+    together = np.stack([s.quaternions for s in shapes])
+    unit = np.linalg.norm(together, axis=-1, keepdims=True)
+    quaternions = np.rint(together / np.maximum(unit, 1e-9) * QUATERNION_SCALE)
     return encode_pack(
         {
             **header,
             "fps": float(fps),
-            "kinds": list(shapes.kinds),
-            "sizes": np.round(shapes.sizes.astype(float), 5).tolist(),
-            "colours": np.round(shapes.colours.astype(float), 3).tolist(),
+            "kinds": list(first.kinds),
+            "sizes": np.round(first.sizes.astype(float), 5).tolist(),
+            "colours": np.round(first.colours.astype(float), 3).tolist(),
             "scale": MILLIMETRES,
             "quaternion_scale": QUATERNION_SCALE,
         },
         {
-            "positions": millimetres(shapes.positions),
+            "positions": np.stack([millimetres(s.positions) for s in shapes]),
             "quaternions": quaternions.astype(np.int16),
         },
     )

@@ -5,10 +5,11 @@
 import { getJSON, getPack, postJSON } from "../api.js";
 import { drawNet, prettyProgram } from "./panel.js";
 import { drawCross, planarDrawer, View } from "./planar.js";
+import { solidDrawer } from "./solid.js";
 import { drawPlot } from "./plot.js";
 
 const $ = (id) => document.getElementById(id);
-const DRAWERS = { planar: planarDrawer };
+const DRAWERS = { planar: planarDrawer, solid: solidDrawer };
 const POLL_MS = 1000;
 const PANEL_SHARE = 0.22;
 
@@ -291,7 +292,9 @@ function stageView() {
   if (!drawer) return;
   const canvas = $("stage"), person = pack.header.individuals[i];
   const band = person.net ? Math.round(PANEL_SHARE * canvas.height) : 0;
+  figures.detach?.();
   figures.stageView = drawer.view(i, canvas.width, canvas.height, band);
+  figures.detach = drawer.attach?.(canvas, figures.stageView); // 3D: orbit with the mouse
   figures.stageBand = band;
 }
 
