@@ -1,6 +1,6 @@
 """Benchmarks run by ``sinews bench NAME``.
 
-Each module ``sinews.benchmarks.NAME`` defines ``run(size: Size = "full") ->
+Each module ``sinews.benchmarks.NAME`` defines ``run(scale: Scale = "full") ->
 list[Result]``: every measurement compares our code with a reference measured
 in the same run, so the ratio means something on any machine. Where the
 reference is another tool (DEAP, Taichi, librosa: the ``[bench]`` extra) and
@@ -12,10 +12,10 @@ from __future__ import annotations
 from sinews.benchmarks._measure import (
     Measurement,
     Result,
-    Size,
+    Scale,
     Skipped,
     best_time,
     optional,
 )
 
-__all__ = ["Measurement", "Result", "Size", "Skipped", "best_time", "optional"]
+__all__ = ["Measurement", "Result", "Scale", "Skipped", "best_time", "optional"]

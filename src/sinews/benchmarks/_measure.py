@@ -9,11 +9,12 @@ from dataclasses import dataclass
 from types import ModuleType
 from typing import Literal
 
-__all__ = ["Measurement", "Result", "Size", "Skipped", "best_time", "optional"]
+__all__ = ["Measurement", "Result", "Scale", "Skipped", "best_time", "optional"]
 
-Size = Literal["full", "quick", "tiny"]
-"""How big the cases are: ``full`` for the numbers in BENCHMARKS.md, ``quick`` for a
-look, ``tiny`` to check that a benchmark runs (its rates mean little)."""
+Scale = Literal["full", "quick", "tiny"]
+"""How big the cases are (``sinews bench --scale``): ``full`` for the numbers in
+BENCHMARKS.md, ``quick`` for a look, ``tiny`` to check that a benchmark runs (its
+rates mean little)."""
 
 
 @dataclass(frozen=True)

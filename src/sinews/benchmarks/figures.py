@@ -28,7 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
-from sinews.benchmarks._measure import Measurement, Result, Size, best_time
+from sinews.benchmarks._measure import Measurement, Scale, best_time
 from sinews.control.springnet import SpringNetController, SpringNetGenome
 from sinews.evolve import SerialEvaluator
 from sinews.experiments.springnet.run import KIND
@@ -109,11 +109,11 @@ def _evolution(population: int, generations: int, seconds: float) -> Measurement
     )
 
 
-def run(size: Size = "full") -> list[Result]:
+def run(scale: Scale = "full") -> list[Measurement]:
     """Luxo, snake, humanoid and the 3D lamp and humanoid at P = 256 and 2000 for 0.5 s
     (not full: P = 64, 0.2 s),
     then the paper's largest snake run (quick: 3 generations of 200 nets for 1 s)."""
-    quick = size != "full"
+    quick = scale != "full"
     sizes, steps, repeats = ((64,), 200, 2) if quick else ((256, 2000), 500, 3)
     results = []
     for figure in (luxo(), snake(), humanoid(), luxo3d(), humanoid3d()):

@@ -25,7 +25,7 @@ from collections.abc import Callable
 import numpy as np
 import numpy.typing as npt
 
-from sinews.benchmarks._measure import Measurement, Result, Size, best_time
+from sinews.benchmarks._measure import Measurement, Scale, best_time
 from sinews.control.gp import GPController, ramped_half_and_half
 from sinews.experiments.gp.settings import GPSettings
 from sinews.experiments.gp.simulate import wiring
@@ -140,9 +140,9 @@ def _renderer_fps(xml: str, width: int, height: int, count: int, camera: list[fl
         return float("nan")
 
 
-def run(size: Size = "full") -> list[Result]:
+def run(scale: Scale = "full") -> list[Measurement]:
     """The 3D lamp and humanoid at P = 256 for 0.5 s (quick: P = 32, 0.2 s), then frames."""
-    quick = size != "full"
+    quick = scale != "full"
     size, seconds, repeats = (32, 0.2, 2) if quick else (256, 0.5, 3)
     results = []
     for name in ("luxo3d-hop", "humanoid3d-touch"):

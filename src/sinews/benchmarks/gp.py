@@ -35,7 +35,7 @@ from collections.abc import Callable
 import numpy as np
 import numpy.typing as npt
 
-from sinews.benchmarks._measure import Measurement, Result, Size, Skipped, best_time, optional
+from sinews.benchmarks._measure import Measurement, Result, Scale, Skipped, best_time, optional
 from sinews.control.gp import GPController, PackedPopulation, Program, ramped_half_and_half
 from sinews.evolve import FitnessSpec, PhaseIn
 from sinews.evolve.gp import GPStrategy
@@ -175,12 +175,12 @@ def _generation(settings: GPSettings, size: int, repeats: int) -> list[Result]:
     ]  # fmt: skip
 
 
-def run(size: Size = "full") -> list[Result]:
+def run(scale: Scale = "full") -> list[Result]:
     """P = 250 programs; a generation of 5 s trials (quick: P = 64, 1 s; tiny: P = 4, 0.05 s)."""
     population, seconds, calls, repeats = {
         "full": (250, 5.0, 2000, 2),
         "quick": (64, 1.0, 200, 1),
         "tiny": (4, 0.05, 2, 1),
-    }[size]
+    }[scale]
     settings = GPSettings(task_name="luxo-hop", task_options={"target": 1.0}, seconds=seconds)
     return [*_interpreter(settings, population, calls), *_generation(settings, population, repeats)]

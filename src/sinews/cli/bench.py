@@ -19,7 +19,7 @@ from sinews.errors import SinewsError
 __all__ = ["register"]
 
 
-class _Size(str, enum.Enum):
+class _Scale(enum.StrEnum):
     full = "full"
     quick = "quick"
     tiny = "tiny"
@@ -38,10 +38,10 @@ def bench(
     names: Annotated[
         list[str] | None, typer.Argument(help="Benchmarks to run (default: all).")
     ] = None,
-    size: Annotated[
-        _Size,
+    scale: Annotated[
+        _Scale,
         typer.Option(help="full: the published cases; quick: smaller; tiny: only check it runs."),
-    ] = _Size.full,
+    ] = _Scale.full,
 ) -> None:
     """Run benchmarks; each prints our rate, a reference's rate from the same run, and the ratio.
 
@@ -62,7 +62,7 @@ def bench(
                 column, justify="left" if column in ("case", "unit", "reference is") else "right"
             )
         skipped = []
-        for m in module.run(size=size.value):
+        for m in module.run(scale=scale.value):
             if not isinstance(m, Measurement):
                 skipped.append(m)
                 continue
@@ -76,7 +76,9 @@ def bench(
             )
         console.print(table)
         for s in skipped:
-            console.print(f"skipped {s.case}: {s.reason}", highlight=False, soft_wrap=True)
+            console.print(
+                f"skipped {s.case}: {s.reason}", markup=False, highlight=False, soft_wrap=True
+            )
 
 
 def register(app: typer.Typer) -> None:
