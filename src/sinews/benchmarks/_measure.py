@@ -2,11 +2,19 @@
 
 from __future__ import annotations
 
+import importlib
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+from types import ModuleType
+from typing import Literal
 
-__all__ = ["Measurement", "best_time"]
+__all__ = ["Measurement", "Result", "Scale", "Skipped", "best_time", "optional"]
+
+Scale = Literal["full", "quick", "tiny"]
+"""How big the cases are (``sinews bench --scale``): ``full`` for the numbers in
+BENCHMARKS.md, ``quick`` for a look, ``tiny`` to check that a benchmark runs (its
+rates mean little)."""
 
 
 @dataclass(frozen=True)
@@ -31,6 +39,30 @@ class Measurement:
     def ratio(self) -> float:
         """ours / reference (how many times faster we are)."""
         return self.ours / self.reference if self.reference > 0 else float("nan")
+
+
+@dataclass(frozen=True)
+class Skipped:
+    """A case that could not run, e.g. because its reference tool is not installed.
+
+    Attributes:
+        case: what would have been measured.
+        reason: one line, e.g. ``"deap is not installed (pip install 'sinews[bench]')"``.
+    """
+
+    case: str
+    reason: str
+
+
+Result = Measurement | Skipped
+
+
+def optional(module: str, case: str) -> ModuleType | Skipped:
+    """Import an anchor's tool from the ``[bench]`` extra, or say why ``case`` is skipped."""
+    try:
+        return importlib.import_module(module)
+    except ImportError:
+        return Skipped(case, f"{module} is not installed (pip install 'sinews[bench]')")
 
 
 def best_time(fn: Callable[[], object], repeats: int = 3) -> float:

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from sinews.benchmarks._measure import Measurement
+from sinews.benchmarks._measure import Measurement, Scale
 from sinews.experiments.dancers.simulate import dance, random_genomes
 from sinews.music import DEMO_NAMES, analyse_file, beat_align_score, write_demo
 from sinews.trajectory import Trajectory
@@ -27,8 +27,9 @@ def _mean_score(trajectories: list[Trajectory], beats: np.ndarray) -> float:
     return float(np.mean([beat_align_score(t.positions, t.fps, beats) for t in trajectories]))
 
 
-def run(quick: bool = False) -> list[Measurement]:
+def run(scale: Scale = "full") -> list[Measurement]:
     """Score 16 random dancers (8 when quick) on each demo song."""
+    quick = scale != "full"
     count = DANCERS // 2 if quick else DANCERS
     genomes = random_genomes(1, count)
     results = []

@@ -15,7 +15,7 @@ import math
 import tempfile
 from pathlib import Path
 
-from sinews.benchmarks._measure import Measurement
+from sinews.benchmarks._measure import Measurement, Scale
 from sinews.evolve import Evaluator, make_evaluator
 from sinews.experiments.dancers.run import KIND
 from sinews.experiments.evolution import GenerationSummary
@@ -50,12 +50,13 @@ class _Run:
         return summaries[-1].seconds
 
 
-def run(quick: bool = False) -> list[Measurement]:
+def run(scale: Scale = "full") -> list[Measurement]:
     """P = 16 and 256 dancers on a 30 s song (quick: P = 16, 5 s, fewer generations).
 
     Rates are 1 / the fastest of a few generations; the evaluators take
     turns, so a busy machine slows them alike.
     """
+    quick = scale != "full"
     sizes = (16,) if quick else (16, 256)
     seconds = 5.0 if quick else 30.0
     rounds = 2 if quick else 4

@@ -1,12 +1,11 @@
-"""Closed-loop figure rollouts against MuJoCo's own open-loop rollout.
+"""Closed-loop figure rollouts against MuJoCo's own rollout of the same controls.
 
 Physics steps per second (individuals × steps / wall time) of
 `sinews.figures.rollout` driving P random spring nets (4 masses, a controller
-call every 10 physics steps) against `mujoco.rollout.rollout` stepping the same
-P states by the same number of steps with fixed controls, on the same threads,
-in the same run. The reference records its full state every step, as it
-always does, into a reused buffer. A ratio near 1 means the closed loop (sensors,
-a controller call per tick, failure checks) costs little over raw stepping.
+call every 10 physics steps) against `mujoco.rollout.rollout` replaying the
+controls those nets produced (`_replay`: same states, same steps, same
+motion, same threads). A ratio near 1 means the closed loop (sensors, a
+controller call per tick, failure checks) costs little over raw stepping.
 The two are timed alternately and the best of each kept, so that load from
 other processes on a shared machine hits both alike.
 
@@ -20,7 +19,6 @@ because survivors are not simulated again.
 
 from __future__ import annotations
 
-import os
 import tempfile
 import time
 from collections.abc import Callable
@@ -28,60 +26,25 @@ from pathlib import Path
 
 import numpy as np
 
-from sinews.benchmarks._measure import Measurement, best_time
+from sinews.benchmarks._measure import Measurement, Scale, best_time
+from sinews.benchmarks._replay import closed_and_replayed
 from sinews.control.springnet import SpringNetController, SpringNetGenome
 from sinews.evolve import SerialEvaluator
 from sinews.experiments.springnet.run import KIND
 from sinews.experiments.springnet.settings import SpringNetSettings
 from sinews.experiments.springnet.simulate import simulate
-from sinews.figures import Figure, humanoid, luxo, require_mujoco, rollout, snake
+from sinews.figures import Figure, humanoid, luxo, rollout, snake
 from sinews.figures.humanoid3d import humanoid3d
 from sinews.figures.luxo3d import luxo3d
 from sinews.store import RunStore
 
 __all__ = ["run"]
 
-CHUNK = 100  # reference steps per mujoco.rollout call (bounds its buffer); divides steps
 
-
-def _ours(figure: Figure, size: int, steps: int) -> Callable[[], object]:
+def _nets(figure: Figure, size: int) -> Callable[[], SpringNetController]:
     genome = SpringNetGenome.random(np.random.default_rng(0), size, 4)
-    controller = SpringNetController(
-        genome, outputs=np.arange(figure.n_actuators) % 4, offset=figure.neutral
-    )
-
-    def once() -> None:
-        rollout(figure, controller, size, steps / 1000, physics_hz=1000, control_hz=100)
-
-    return once
-
-
-def _reference(figure: Figure, size: int, steps: int) -> Callable[[], object]:
-    mujoco = require_mujoco()
-    from mujoco import rollout as mj_rollout
-
-    model = figure.model(timestep=0.001)
-    threads = os.cpu_count() or 1
-    datas = [mujoco.MjData(model) for _ in range(threads)]
-    spec = mujoco.mjtState.mjSTATE_FULLPHYSICS
-    initial = np.empty(mujoco.mj_stateSize(model, spec))
-    mujoco.mj_forward(model, datas[0])
-    mujoco.mj_getState(model, datas[0], initial, spec)
-    start = np.tile(initial, (size, 1))
-    control = np.tile(figure.neutral, (size, CHUNK, 1))
-    state = np.empty((size, CHUNK, len(initial)))
-    sensordata = np.empty((size, CHUNK, model.nsensordata))
-
-    def once() -> None:
-        current = start
-        for _ in range(steps // CHUNK):
-            mj_rollout.rollout(
-                model, datas, current, control,
-                state=state, sensordata=sensordata, persistent_pool=True,
-            )  # fmt: skip
-            current = state[:, -1]
-
-    return once
+    outputs = np.arange(figure.n_actuators) % 4
+    return lambda: SpringNetController(genome, outputs=outputs, offset=figure.neutral)
 
 
 def _evolution(population: int, generations: int, seconds: float) -> Measurement:
@@ -109,16 +72,20 @@ def _evolution(population: int, generations: int, seconds: float) -> Measurement
     )
 
 
-def run(quick: bool = False) -> list[Measurement]:
+def run(scale: Scale = "full") -> list[Measurement]:
     """Luxo, snake, humanoid and the 3D lamp and humanoid at P = 256 and 2000 for 0.5 s
-    (quick: P = 64, 0.2 s),
-    then the paper's largest snake run (quick: 3 generations of 200 nets for 1 s)."""
-    sizes, steps, repeats = ((64,), 200, 2) if quick else ((256, 2000), 500, 3)
+    (quick: P = 64, 0.2 s; tiny: P = 4, 0.1 s), then the paper's largest snake run
+    (quick: 3 generations of 200 nets for 1 s; tiny: 1 of 8 for 0.1 s)."""
+    sizes, seconds, repeats, evolution = {
+        "full": ((256, 2000), 0.5, 3, (2000, 20, 5.0)),
+        "quick": ((64,), 0.2, 2, (200, 3, 1.0)),
+        "tiny": ((4,), 0.1, 1, (8, 1, 0.1)),
+    }[scale]
     results = []
     for figure in (luxo(), snake(), humanoid(), luxo3d(), humanoid3d()):
-        _ours(figure, 2, CHUNK)()  # compile or load the numba cache
+        rollout(figure, _nets(figure, 2)(), 2, 0.01)  # compile or load the numba cache
         for size in sizes:
-            ours, reference = _ours(figure, size, steps), _reference(figure, size, steps)
+            ours, reference, steps = closed_and_replayed(figure, _nets(figure, size), size, seconds)
             ours_time, reference_time = np.inf, np.inf
             for _ in range(repeats):
                 ours_time = min(ours_time, best_time(ours, 1))
@@ -129,8 +96,8 @@ def run(quick: bool = False) -> list[Measurement]:
                     "steps/s",
                     size * steps / ours_time,
                     size * steps / reference_time,
-                    "mujoco.rollout (open loop)",
+                    "mujoco.rollout replaying our controls",
                 )
             )
-    results.append(_evolution(*((200, 3, 1.0) if quick else (2000, 20, 5.0))))
+    results.append(_evolution(*evolution))
     return results

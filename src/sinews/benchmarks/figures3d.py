@@ -23,61 +23,26 @@ import sys
 from collections.abc import Callable
 
 import numpy as np
-import numpy.typing as npt
 
-from sinews.benchmarks._measure import Measurement, best_time
+from sinews.benchmarks._measure import Measurement, Scale, best_time
+from sinews.benchmarks._replay import closed_and_replayed
 from sinews.control.gp import GPController, ramped_half_and_half
 from sinews.experiments.gp.settings import GPSettings
 from sinews.experiments.gp.simulate import wiring
-from sinews.figures import require_mujoco, rollout
+from sinews.figures import require_mujoco
 from sinews.figures.tasks import Task
 
 __all__ = ["run"]
 
-CHUNK = 100  # steps per mujoco.rollout call
-
 
 def _cases(
     settings: GPSettings, size: int, seconds: float
-) -> tuple[Callable[[], object], Callable[[], object]]:
-    mujoco = require_mujoco()
-    from mujoco import rollout as mj_rollout
-
+) -> tuple[Callable[[], object], Callable[[], object], int]:
     task = settings.task
     programs = ramped_half_and_half(settings.pset, np.random.default_rng(0), n_programs=size,
                                     n_trees=len(task.joints), min_depth=2, max_depth=6)  # fmt: skip
-    ticks: list[npt.NDArray[np.float64]] = []
-
-    def keep(t: float, sensors: npt.NDArray[np.float64], targets: npt.NDArray[np.float64]) -> None:
-        ticks.append(targets.copy())
-
-    rollout(task.figure, GPController(programs, wiring(task)), size, seconds, observer=keep)
-    substeps = 10
-    control = np.repeat(np.stack(ticks[:-1], axis=1), substeps, axis=1)  # (P, steps, nu)
-    steps = control.shape[1] - control.shape[1] % CHUNK
-    model = task.figure.model(timestep=0.001)
-    datas = [mujoco.MjData(model) for _ in range(os.cpu_count() or 1)]
-    spec = mujoco.mjtState.mjSTATE_FULLPHYSICS
-    initial = np.empty(mujoco.mj_stateSize(model, spec))
-    mujoco.mj_forward(model, datas[0])
-    mujoco.mj_getState(model, datas[0], initial, spec)
-    start = np.tile(initial, (size, 1))
-    state = np.empty((size, CHUNK, len(initial)))
-    sensordata = np.empty((size, CHUNK, model.nsensordata))
-
-    def ours() -> None:
-        rollout(task.figure, GPController(programs, wiring(task)), size, steps / 1000)
-
-    def reference() -> None:
-        current = start
-        for c in range(steps // CHUNK):
-            mj_rollout.rollout(
-                model, datas, current, control[:, c * CHUNK : (c + 1) * CHUNK],
-                state=state, sensordata=sensordata, persistent_pool=True,
-            )  # fmt: skip
-            current = state[:, -1]
-
-    return ours, reference
+    controls = wiring(task)
+    return closed_and_replayed(task.figure, lambda: GPController(programs, controls), size, seconds)
 
 
 def _frames(task: Task, width: int, height: int, count: int) -> Measurement | None:
@@ -140,17 +105,19 @@ def _renderer_fps(xml: str, width: int, height: int, count: int, camera: list[fl
         return float("nan")
 
 
-def run(quick: bool = False) -> list[Measurement]:
+def run(scale: Scale = "full") -> list[Measurement]:
     """The 3D lamp and humanoid at P = 256 for 0.5 s (quick: P = 32, 0.2 s), then frames."""
-    size, seconds, repeats = (32, 0.2, 2) if quick else (256, 0.5, 3)
+    quick = scale != "full"
+    size, seconds, repeats = {"full": (256, 0.5, 3), "quick": (32, 0.2, 2), "tiny": (4, 0.1, 1)}[
+        scale
+    ]
     results = []
     for name in ("luxo3d-hop", "humanoid3d-touch"):
-        ours, reference = _cases(GPSettings(name, {}), size, seconds)
+        ours, reference, steps = _cases(GPSettings(name, {}), size, seconds)
         ours_time, reference_time = np.inf, np.inf
         for _ in range(repeats):
             ours_time = min(ours_time, best_time(ours, 1))
             reference_time = min(reference_time, best_time(reference, 1))
-        steps = int(seconds * 1000) - int(seconds * 1000) % CHUNK
         results.append(
             Measurement(
                 f"{name} GP P={size} x {steps} steps",

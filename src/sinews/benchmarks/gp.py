@@ -1,54 +1,56 @@
-"""GP controllers: the population interpreter, and a whole generation against MuJoCo alone.
+"""GP controllers: our interpreter and a whole generation against DEAP, the tool a user would pick.
 
-Three cases, each timed against a reference in the same run:
+Cases, each timed against its reference in the same run:
 
-- **interpreter**: tree evaluations per second of `PackedPopulation.evaluate`
-  (the serial numba kernel, as the controller calls it each tick) on P random
-  programs of 3 trees (ramped half-and-half, depths 2–6, the lamp's
-  terminals), against the numpy reference interpreter on the same programs.
-- **parallel kernel**: the parallel kernel against the serial one on the same
-  work, outside any rollout (is waking the threads worth it at this size?).
-- **generation**: generations per second of one GP generation of Luxo
+- **interpreter vs DEAP**: tree evaluations per second of
+  `PackedPopulation.evaluate` (the serial numba kernel, as the controller calls
+  it each tick; then the parallel kernel) on P random programs of 3 trees
+  (ramped half-and-half, depths 2–6, the lamp's terminals), against the same
+  programs converted to DEAP primitive trees, ``gp.compile``d to lambdas and
+  called per individual and tree on the same input rows (`_deap`). The two
+  answer the same values (checked here).
+- **generation vs DEAP**: generations per second of one GP generation of Luxo
   hopping — P programs simulated for 5 s at 1 kHz physics and 100 Hz control,
-  rated, and the next generation bred — against MuJoCo stepping alone: the
-  same P simulations replayed open loop from the servo targets the programs
-  produced (same motion, same contacts) on a bare `mujoco.batch.Batch` with
-  the same threads. The ratio is MuJoCo's share of the generation's time, so
+  rated, and the next generation bred — against the same generation driven by
+  DEAP: the programs compiled by ``gp.compile``, the same rollout and rating,
+  bred by DEAP's operators.
+- **generation vs MuJoCo alone**: our generation against MuJoCo stepping alone:
+  the same P simulations replayed open loop from the servo targets the programs
+  produced (same motion, same contacts) on a bare `mujoco.batch.Batch` with the
+  same threads. The ratio is MuJoCo's share of the generation's time, so
   1 − ratio is the share spent outside MuJoCo stepping (interpreter, sensors,
   fitness, breeding).
-- **generation, parallel interpreter**: the same generation with the parallel
-  kernel inside the rollout, against the serial one (the default).
+
+The three generations are timed alternately (best of ``repeats``), so load from
+other jobs hits them alike. Without DEAP (the ``[bench]`` extra) its cases are
+skipped.
 """
 
 from __future__ import annotations
 
 import os
 import time
+from collections.abc import Callable
 
 import numpy as np
 import numpy.typing as npt
 
-from sinews.benchmarks._measure import Measurement, best_time
-from sinews.control.gp import (
-    GPController,
-    PackedPopulation,
-    ramped_half_and_half,
-    reference_population,
-)
+from sinews.benchmarks._measure import Measurement, Result, Scale, Skipped, best_time, optional
+from sinews.control.gp import GPController, PackedPopulation, Program, ramped_half_and_half
 from sinews.evolve import FitnessSpec, PhaseIn
 from sinews.evolve.gp import GPStrategy
 from sinews.experiments.gp.run import default_phase_in
-from sinews.experiments.gp.settings import GPSettings, Runtime
+from sinews.experiments.gp.settings import GPSettings
 from sinews.experiments.gp.simulate import measure_programs, wiring
 from sinews.figures import require_mujoco, rollout
-from sinews.figures.tasks import Task
+from sinews.figures.tasks import Task, TaskMeter
 
 __all__ = ["run"]
 
 FloatArray = npt.NDArray[np.float64]
 
 
-def _interpreter(settings: GPSettings, size: int, calls: int) -> list[Measurement]:
+def _interpreter(settings: GPSettings, size: int, calls: int) -> list[Result]:
     pset = settings.pset
     programs = ramped_half_and_half(pset, np.random.default_rng(0), n_programs=size, n_trees=3)
     inputs = np.random.default_rng(1).normal(size=(size, pset.n_terminals))
@@ -57,23 +59,39 @@ def _interpreter(settings: GPSettings, size: int, calls: int) -> list[Measuremen
     for threads in (False, True):
         packed.evaluate(inputs, out, parallel=threads)  # compile or load the numba cache
 
-    def per_call(parallel: bool) -> float:
+    def per_call(evaluate: Callable[[], object], n: int) -> float:
         def calls_in_a_row() -> None:
-            for _ in range(calls):
-                packed.evaluate(inputs, out, parallel=parallel)
+            for _ in range(n):
+                evaluate()
 
-        return best_time(calls_in_a_row) / calls
+        return best_time(calls_in_a_row) / n
 
-    serial, in_parallel = per_call(False), per_call(True)
-    reference = best_time(lambda: reference_population(programs, inputs), repeats=1)
-    mean = len(packed.code) / (size * 3)
-    case = f"P={size} x 3 trees, {mean:.0f} nodes on average"
+    serial = per_call(lambda: packed.evaluate(inputs, out), calls)
+    in_parallel = per_call(lambda: packed.evaluate(inputs, out, parallel=True), calls)
+    case = f"P={size} x 3 trees, {len(packed.code) / (size * 3):.0f} nodes on average"
     trees = size * 3
+    results: list[Result] = [
+        Measurement(f"parallel kernel {case}", "tree-evals/s", trees / in_parallel, trees / serial,
+                    "our serial kernel"),
+    ]  # fmt: skip
+    deap = optional("deap", f"interpreter {case} vs DEAP")
+    if isinstance(deap, Skipped):
+        return [deap, *results]
+    from sinews.benchmarks._deap import DeapPopulation
+
+    lambdas = DeapPopulation(programs, pset)
+    lambdas.compile()
+    theirs = np.empty_like(out)
+    lambdas.evaluate(inputs, theirs)
+    if not np.array_equal(theirs, packed.evaluate(inputs, out), equal_nan=True):
+        raise AssertionError("DEAP's lambdas and our interpreter disagree")
+    reference = per_call(lambda: lambdas.evaluate(inputs, theirs), max(1, calls // 10))
     return [
         Measurement(f"interpreter {case}", "tree-evals/s", trees / serial, trees / reference,
-                    "numpy reference interpreter"),
-        Measurement(f"parallel kernel {case}", "tree-evals/s", trees / in_parallel, trees / serial,
-                    "serial kernel"),
+                    "DEAP gp.compile lambdas"),
+        Measurement(f"parallel kernel {case}", "tree-evals/s", trees / in_parallel,
+                    trees / reference, "DEAP gp.compile lambdas"),
+        *results,
     ]  # fmt: skip
 
 
@@ -93,9 +111,24 @@ def _stepping_alone(task: Task, targets: FloatArray, substeps: int) -> float:
     return best_time(replay, repeats=1)
 
 
-def _generation(settings: GPSettings, size: int, repeats: int) -> list[Measurement]:
+def _deap_generation(settings: GPSettings, programs: list[Program], spec: FitnessSpec) -> float:
+    """Seconds for one DEAP-driven generation: compile, simulate, rate, breed."""
+    from sinews.benchmarks._deap import DeapController
+
+    task = settings.task
+    start = time.perf_counter()
+    controller = DeapController(programs, wiring(task), settings.pset)
+    meter = TaskMeter(task, len(programs))
+    result = rollout(
+        task.figure, controller, len(programs), task.seconds, control_hz=settings.control_hz,
+        physics_hz=settings.physics_hz, observer=meter,
+    )  # fmt: skip
+    controller.deap.breed(spec.combine(meter.terms(), result.failed, 0), seed=0)
+    return time.perf_counter() - start
+
+
+def _generation(settings: GPSettings, size: int, repeats: int) -> list[Result]:
     task, seconds = settings.task, settings.task.seconds
-    serial, parallel = Runtime(), Runtime(parallel_interpreter=True)
     paper = PhaseIn(**default_phase_in(50))  # generation 0 is rated by the main goal alone
     spec = FitnessSpec(main="distance", weights=task.weights, phase_in=paper)
     first = GPStrategy(
@@ -104,13 +137,12 @@ def _generation(settings: GPSettings, size: int, repeats: int) -> list[Measureme
     )  # fmt: skip
     programs = first.ask()
     checkpoint = first.to_bytes()
-    for runtime in (serial, parallel):
-        measure_programs(settings, programs[:2], runtime)  # compile or load the numba cache
+    measure_programs(settings, programs[:2])  # compile or load the numba cache
 
-    def generation(runtime: Runtime) -> float:
+    def generation() -> float:
         strategy = GPStrategy.from_bytes(checkpoint)
         start = time.perf_counter()
-        done = measure_programs(settings, programs, runtime)
+        done = measure_programs(settings, programs)
         strategy.tell(spec.combine(done.terms, done.failed, 0))
         strategy.ask()
         return time.perf_counter() - start
@@ -122,22 +154,33 @@ def _generation(settings: GPSettings, size: int, repeats: int) -> list[Measureme
     )  # fmt: skip
     replay = np.array(targets[:-1])
     substeps = settings.physics_hz // settings.control_hz
-    times = {"serial": np.inf, "parallel": np.inf, "mujoco": np.inf}
-    for _ in range(repeats):  # alternately, so that load from elsewhere hits all alike
-        times["serial"] = min(times["serial"], generation(serial))
-        times["parallel"] = min(times["parallel"], generation(parallel))
-        times["mujoco"] = min(times["mujoco"], _stepping_alone(task, replay, substeps))
     case = f"generation luxo-hop P={size} x {seconds:g} s at 1 kHz"
-    return [
-        Measurement(case, "generations/s", 1 / times["serial"], 1 / times["mujoco"],
+    deap = optional("deap", f"{case} vs DEAP")
+    times = {"ours": np.inf, "mujoco": np.inf, "deap": np.inf}
+    for _ in range(repeats):  # alternately, so that load from elsewhere hits all alike
+        times["ours"] = min(times["ours"], generation())
+        times["mujoco"] = min(times["mujoco"], _stepping_alone(task, replay, substeps))
+        if not isinstance(deap, Skipped):
+            times["deap"] = min(times["deap"], _deap_generation(settings, programs, spec))
+    results: list[Result] = [
+        Measurement(case, "generations/s", 1 / times["ours"], 1 / times["mujoco"],
                     "MuJoCo stepping alone (same motions)"),
-        Measurement(f"{case}, parallel interpreter", "generations/s", 1 / times["parallel"],
-                    1 / times["serial"], "serial interpreter"),
+    ]  # fmt: skip
+    if isinstance(deap, Skipped):
+        return [deap, *results]
+    return [
+        Measurement(case, "generations/s", 1 / times["ours"], 1 / times["deap"],
+                    "DEAP: gp.compile, same rollout, DEAP breeding"),
+        *results,
     ]  # fmt: skip
 
 
-def run(quick: bool = False) -> list[Measurement]:
-    """P = 250 programs; a generation of 5 s trials (quick: P = 64, 1 s)."""
-    size, seconds, calls, repeats = (64, 1.0, 200, 1) if quick else (250, 5.0, 2000, 2)
+def run(scale: Scale = "full") -> list[Result]:
+    """P = 250 programs; a generation of 5 s trials (quick: P = 64, 1 s; tiny: P = 4, 0.05 s)."""
+    population, seconds, calls, repeats = {
+        "full": (250, 5.0, 2000, 2),
+        "quick": (64, 1.0, 200, 1),
+        "tiny": (4, 0.05, 2, 1),
+    }[scale]
     settings = GPSettings(task_name="luxo-hop", task_options={"target": 1.0}, seconds=seconds)
-    return [*_interpreter(settings, size, calls), *_generation(settings, size, repeats)]
+    return [*_interpreter(settings, population, calls), *_generation(settings, population, repeats)]

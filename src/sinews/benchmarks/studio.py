@@ -29,7 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
-from sinews.benchmarks._measure import Measurement, best_time
+from sinews.benchmarks._measure import Measurement, Scale, best_time
 from sinews.evolve import SerialEvaluator
 from sinews.experiments.dancers.run import KIND
 from sinews.music import demo_song, save_wav
@@ -62,8 +62,9 @@ def _turns(cases: dict[str, Callable[[], object]], rounds: int) -> dict[str, flo
     return best
 
 
-def run(quick: bool = False) -> list[Measurement]:
+def run(scale: Scale = "full") -> list[Measurement]:
     """Breed P = 16 dancers on a 60 s song (quick: 10 s), and encode their motion."""
+    quick = scale != "full"
     seconds = 10.0 if quick else 60.0
     rounds = 3 if quick else 6
     with tempfile.TemporaryDirectory(prefix="sinews-bench-") as tmp:

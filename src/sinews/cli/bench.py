@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import enum
 import importlib
 import os
 import pkgutil
@@ -12,9 +13,16 @@ from rich.console import Console
 from rich.table import Table
 
 import sinews.benchmarks
+from sinews.benchmarks import Measurement
 from sinews.errors import SinewsError
 
 __all__ = ["register"]
+
+
+class _Scale(enum.StrEnum):
+    full = "full"
+    quick = "quick"
+    tiny = "tiny"
 
 
 def available() -> list[str]:
@@ -30,9 +38,16 @@ def bench(
     names: Annotated[
         list[str] | None, typer.Argument(help="Benchmarks to run (default: all).")
     ] = None,
-    quick: Annotated[bool, typer.Option(help="Smaller cases, for a quick look.")] = False,
+    scale: Annotated[
+        _Scale,
+        typer.Option(help="full: the published cases; quick: smaller; tiny: only check it runs."),
+    ] = _Scale.full,
 ) -> None:
-    """Run benchmarks; each prints our rate, a reference's rate from the same run, and the ratio."""
+    """Run benchmarks; each prints our rate, a reference's rate from the same run, and the ratio.
+
+    A case whose reference tool (the [bench] extra: DEAP, Taichi, librosa) is not
+    installed is skipped with a one-line reason.
+    """
     known = available()
     for name in names or known:
         if name not in known:
@@ -46,7 +61,11 @@ def bench(
             table.add_column(
                 column, justify="left" if column in ("case", "unit", "reference is") else "right"
             )
-        for m in module.run(quick=quick):
+        skipped = []
+        for m in module.run(scale=scale.value):
+            if not isinstance(m, Measurement):
+                skipped.append(m)
+                continue
             table.add_row(
                 m.case,
                 f"{m.ours:,.4g}",
@@ -56,6 +75,10 @@ def bench(
                 m.reference_name,
             )
         console.print(table)
+        for s in skipped:
+            console.print(
+                f"skipped {s.case}: {s.reason}", markup=False, highlight=False, soft_wrap=True
+            )
 
 
 def register(app: typer.Typer) -> None:

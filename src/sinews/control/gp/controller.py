@@ -135,7 +135,7 @@ class GPController:
             (P, n_act) desired angles, rad.
         """
         inputs = sensors @ self.wiring.input_weights + self.wiring.input_offset
-        values = self.packed.evaluate(inputs, self._values, parallel=self.parallel)
+        values = self._tree_values(inputs)
         targets = np.clip(values, self._low, self._high)
         finite = np.isfinite(values)
         if not finite.all():
@@ -143,3 +143,7 @@ class GPController:
             targets = np.where(np.isfinite(targets), targets, self._neutral)
         self._targets[:, self.wiring.actuators] = targets
         return self._targets
+
+    def _tree_values(self, inputs: FloatArray) -> FloatArray:
+        """(P, J) tree values on (P, V) terminal rows (a benchmark swaps in another interpreter)."""
+        return self.packed.evaluate(inputs, self._values, parallel=self.parallel)
