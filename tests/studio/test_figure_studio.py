@@ -125,6 +125,18 @@ def test_the_page_lists_cli_runs_and_sends_generations_as_pose_packs(
     assert set(header["individuals"][0]["terms"]) >= {"distance", "head", "fallen"}
 
 
+def test_the_learning_timeline_is_exported_as_an_mp4(
+    figure_server: StudioServer, figure_db: Path
+) -> None:
+    assert call(figure_server, "/api/figures/runs/1/timeline.mp4")[0] == 405  # a GET cannot
+    status, video = call(figure_server, "/api/figures/runs/1/timeline.mp4", {})
+    assert status == 200 and video[4:8] == b"ftyp" and len(video) > 10_000
+    with RunStore(figure_db) as store:
+        kept = [store.root / m.path for m in store.media(1) if m.kind == "mp4"]
+    assert len(kept) == 1 and kept[0].read_bytes() == video
+    assert ok(figure_server, "/api/figures/runs/1/timeline.mp4", {}) == video  # made once
+
+
 def test_requests_are_checked_like_the_dancer_pages(figure_server: StudioServer) -> None:
     breed = "/api/figures/runs/1/generations/1/breed"
     assert call(figure_server, breed, {"picks": [0]}, Origin="http://evil.example")[0] == 403

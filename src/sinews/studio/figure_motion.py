@@ -61,10 +61,15 @@ class FigureMotion:
         return self._packs.get(key, lambda: self._pack(run, people, generation))
 
     def timeline(self, run_id: int) -> bytes:
-        """The best of each generation (at most `MAX_SHOWN`, evenly spaced, the first and
-        the last among them) by stored fitness, as one pack (``generation`` -1), oldest first:
-        the run learning."""
+        """The learning timeline (`timeline_bests`) as one pack (``generation`` -1)."""
         run = self.runs.get(run_id)
+        bests = self.timeline_bests(run_id)
+        last = bests[-1].generation
+        return self._packs.get((run_id, "timeline", last), lambda: self._pack(run, bests, -1))
+
+    def timeline_bests(self, run_id: int) -> list[Individual]:
+        """The best of each generation (at most `MAX_SHOWN`, evenly spaced, the first and the
+        last among them) by stored fitness, oldest first: the run learning."""
         store = self.runs.store
         last = store.last_generation(run_id)
         if last < 0:
@@ -79,7 +84,12 @@ class FigureMotion:
                 bests.append(store.individuals(run_id, generation)[int(table.index[best])])
         if not bests:
             raise FigureRunError(f"run {run_id} has no scored generation")
-        return self._packs.get((run_id, "timeline", last), lambda: self._pack(run, bests, -1))
+        return bests
+
+    def timeline_replays(self, run_id: int) -> list[Replay]:
+        """The learning timeline replayed for a video (`sinews.render.replays.draw_replays`)."""
+        run = self.runs.get(run_id)
+        return run.kind.replay(self.runs.store, self.timeline_bests(run_id))
 
     def _pack(self, run: FigureRun, people: list[Individual], generation: int) -> bytes:
         replays = run.kind.replay(self.runs.store, people, record_hz=POSE_HZ)

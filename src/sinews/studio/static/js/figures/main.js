@@ -2,7 +2,7 @@
 // hand and bred, or evolved in the background while a plot follows the fitness.
 // State lives on `window.figures` (the browser tests read it).
 
-import { getJSON, getPack, postJSON } from "../api.js";
+import { download, getJSON, getPack, postJSON } from "../api.js";
 import { drawNet, prettyProgram } from "./panel.js";
 import { drawCross, planarDrawer, View } from "./planar.js";
 import { solidDrawer } from "./solid.js";
@@ -526,6 +526,10 @@ $("timeline").addEventListener("click", () => attempt(async () => {
   drawAll();
 }));
 $("timeline-seek").addEventListener("input", () => { timelineAt(Number($("timeline-seek").value)); drawAll(); });
+$("timeline-mp4").addEventListener("click", () => attempt(async () => {
+  say("drawing the learning timeline as a video…");
+  say(`saved ${await download(`/api/figures/runs/${figures.run.id}/timeline.mp4`)}`);
+}));
 window.addEventListener("resize", () => sizeCanvases());
 
 attempt(start).then(() => {
