@@ -26,7 +26,6 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 import scipy.ndimage
-import scipy.signal
 
 __all__ = [
     "LIFT_SHIFTS",
@@ -79,6 +78,8 @@ def kinematic_beats(positions: npt.NDArray[np.floating], fps: float) -> npt.NDAr
     """
     if len(positions) < 3:
         return np.zeros(0, dtype=np.int64)
+    import scipy.signal  # here, not at the top: 1-4 s of every start that scores no pauses
+
     speed = scipy.ndimage.gaussian_filter1d(mean_speed(positions, fps), SMOOTH_S * fps)
     pauses, _ = scipy.signal.find_peaks(-speed)
     return pauses.astype(np.int64)

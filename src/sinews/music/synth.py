@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import numpy as np
 import numpy.typing as npt
-import scipy.signal
 
 __all__ = [
     "Sound",
@@ -38,6 +37,8 @@ def _time(seconds: float, sr: int) -> Sound:
 
 
 def _filtered(signal: Sound, kind: str, hz: float | list[float], sr: int, order: int = 2) -> Sound:
+    import scipy.signal  # here, not at the top: only a demo song being made needs it
+
     sos = scipy.signal.butter(order, hz, btype=kind, fs=sr, output="sos")
     return scipy.signal.sosfilt(sos, signal)
 
