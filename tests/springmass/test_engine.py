@@ -17,6 +17,7 @@ from sinews.springmass import (
     Recording,
     SimState,
     Status,
+    engine,
     simulate,
 )
 
@@ -315,3 +316,25 @@ def test_bad_edges_and_names() -> None:
         Body.build(["a", "a"], [[0, 0], [1, 0]], [(0, 1)])
     with pytest.raises(BodyError, match="home_follow"):
         EngineParams(home_follow=(2.0, 0.0))
+
+
+def test_small_and_large_batches_give_the_same_motion_bit_for_bit(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """Batches up to SERIAL_BODIES run on the serial kernel, larger ones on the threaded one:
+    the same bodies move identically either way."""
+    rng = np.random.default_rng(11)
+    bodies = [random_body(rng, int(rng.integers(2, 15))) for _ in range(9)]
+    batch = BodyBatch.from_bodies(bodies, seeds=rng.integers(0, 2**63, 9).tolist())
+    push = rng.normal(0.0, 5.0, (120, *batch.rest.shape))
+    runs = []
+    for serial_bodies in (0, 9):  # threaded, then serial
+        monkeypatch.setattr(engine, "SERIAL_BODIES", serial_bodies)
+        runs.append(simulate(batch, batch.initial_state(), 120, external=push, record_forces=True))
+    (threaded, by_threads), (serial, by_one) = runs
+    assert by_threads is not None and by_one is not None
+    np.testing.assert_array_equal(threaded.positions, serial.positions)
+    np.testing.assert_array_equal(threaded.velocities, serial.velocities)
+    np.testing.assert_array_equal(by_threads.positions, by_one.positions)
+    assert by_threads.forces is not None and by_one.forces is not None
+    np.testing.assert_array_equal(by_threads.forces, by_one.forces)

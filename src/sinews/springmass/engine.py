@@ -10,13 +10,18 @@ import numpy.typing as npt
 
 from sinews.springmass.batch import BodyBatch, EngineParams, SimState
 from sinews.springmass.body import BodyError
-from sinews.springmass.kernels import simulate_kernel
+from sinews.springmass.kernels import simulate_kernel, simulate_serial
 from sinews.springmass.reference import simulate_reference
 from sinews.trajectory import Trajectory
 
-__all__ = ["Backend", "Recording", "simulate"]
+__all__ = ["SERIAL_BODIES", "Backend", "Recording", "simulate"]
 
 Backend = Literal["numba", "numpy"]
+
+SERIAL_BODIES = 32
+"""Batches this small run on one thread (`simulate_serial`, bit for bit the same): the
+studio's 12-25 dancers gain little from threads, and a first start then compiles only
+the serial kernel (8 s against 20 s on an empty numba cache)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -102,7 +107,10 @@ def simulate(
     n_rec = n_steps // record_stride + 1 if record else 0
     rec_pos = np.zeros((n_rec, n_bodies, big_n, 2), dtype=np.float32)
     rec_force = np.zeros((n_rec if record_forces else 0, n_bodies, big_n, 2), dtype=np.float32)
-    run = simulate_kernel if backend == "numba" else simulate_reference
+    if backend == "numpy":
+        run = simulate_reference
+    else:
+        run = simulate_serial if n_bodies <= SERIAL_BODIES else simulate_kernel
     run(
         new.positions, new.velocities, new.status, new.failed_step,
         batch.n_nodes, batch.n_edges, batch.n_attractions, batch.rest, batch.mass,
