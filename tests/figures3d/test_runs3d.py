@@ -10,12 +10,13 @@ import numpy as np
 import pytest
 from PIL import Image
 
+from gp_helpers import stored
 from killed_runs import kill_when, stored_generations
 
 pytest.importorskip("mujoco")
 
 from sinews.cli import main
-from sinews.store import Individual, RunStore
+from sinews.store import RunStore
 
 OPTIONS: dict[str, Any] = {"task": "hop", "target": "1.0,0.5", "population": 6,
                            "generations": 5, "seconds": 0.4, "seed": 3}  # fmt: skip
@@ -25,13 +26,6 @@ def arguments(figure: str = "luxo3d", **changes: Any) -> list[str]:
     options = {**OPTIONS, **changes}
     given = [part for key, value in options.items() for part in (f"--{key}", str(value))]
     return ["evolve", figure, "--controller", "gp", *given]
-
-
-def stored(db: Path) -> tuple[str, list[Individual], list[bytes]]:
-    with RunStore(db) as store:
-        (info,) = store.runs()
-        checkpoints = [store.checkpoint(info.id, g) for g in range(info.generations)]
-        return info.status, store.individuals(info.id), checkpoints
 
 
 @pytest.fixture(scope="module")

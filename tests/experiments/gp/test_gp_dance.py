@@ -13,9 +13,10 @@ import pytest
 pytest.importorskip("mujoco")
 
 from dance_helpers import click_song
+from gp_helpers import stored
 from killed_runs import kill_when, sinews_command, stored_generations
 from sinews.cli import main
-from sinews.store import Individual, RunStore
+from sinews.store import RunStore
 
 OPTIONS = ["--controller", "gp", "--task", "dance", "--population", "6", "--generations", "4",
            "--seconds", "1.5", "--seed", "2"]  # fmt: skip
@@ -35,13 +36,6 @@ def folder(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Path]:
 def arguments(folder: Path, db: str) -> list[str]:
     return ["evolve", "luxo", *OPTIONS, "--song", str(folder / "song.wav"), "--db",
             str(folder / db)]  # fmt: skip
-
-
-def stored(db: Path) -> tuple[str, list[Individual], list[bytes]]:
-    with RunStore(db) as store:
-        (info,) = store.runs()
-        checkpoints = [store.checkpoint(info.id, g) for g in range(info.generations)]
-        return info.status, store.individuals(info.id), checkpoints
 
 
 @pytest.fixture(scope="module")
