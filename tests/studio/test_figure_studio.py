@@ -263,7 +263,7 @@ def test_runs_started_in_the_page_evolve_in_the_background_as_the_cli_would(
     assert stored(figure_db, run) == stored(twin, 1)
 
 
-def test_a_run_the_cli_is_making_is_read_only_in_the_page(
+def test_a_run_the_cli_is_making_is_read_only_in_the_page_until_the_cli_dies(
     figure_server: StudioServer, figure_db: Path, studio_env: dict[str, str]
 ) -> None:
     command = [*sinews_command(), "evolve", "snake", "--population", "5", "--generations",
@@ -294,6 +294,16 @@ def test_a_run_the_cli_is_making_is_read_only_in_the_page(
             time.sleep(0.2)
             later = ok(figure_server, f"/api/figures/runs/{newest['id']}")
         assert len(later["history"]) == later["generations"]
-    finally:
-        cli.send_signal(signal.SIGINT)
+        # killed, the run keeps its "running" status, but no process holds its lease:
+        # the page may take it over and evolve it on
+        cli.kill()
         cli.wait(timeout=120)
+        taken = ok(figure_server, f"/api/figures/runs/{newest['id']}")
+        assert taken["status"] == "running" and not taken["readOnly"]
+        ok(figure_server, f"/api/figures/runs/{newest['id']}/evolve", {"generations": 1})
+        done = settled(figure_server, newest["id"])
+        assert done["generations"] == taken["generations"] + 1
+    finally:
+        if cli.poll() is None:
+            cli.send_signal(signal.SIGINT)
+            cli.wait(timeout=120)

@@ -27,6 +27,7 @@ from sinews.store import (
     export_run,
     generation_stats,
 )
+from sinews.store.lease import check_free
 
 __all__ = ["register"]
 
@@ -190,6 +191,7 @@ def resume(
                 f"{code_version()}; new generations may differ from an uninterrupted run",
                 err=True,
             )
+        check_free(store.root, run)  # before any worker starts or progress shows
         with make_evaluator(
             executor or kind_of(info).default_executor, workers=workers, scheduler=scheduler
         ) as evaluator:

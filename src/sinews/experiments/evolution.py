@@ -40,6 +40,7 @@ from sinews.evolve import (
     strategy_rng,
 )
 from sinews.store import GenerationRecord, Individual, RunStore, ScoreTable
+from sinews.store.lease import run_lease
 
 __all__ = [
     "GenerationSummary",
@@ -272,31 +273,33 @@ def continue_run(
 
     Raises:
         SinewsError: ``generations`` is fewer than the run already has.
+        StoreError: another process is running the run (it holds the run's lease).
     """
-    info = store.run(run_id)
-    if generations is not None and generations != info.config["generations"]:
-        if generations < info.generations:
-            raise SinewsError(f"run {run_id} already has {info.generations} generations")
-        store.update_config(run_id, {**info.config, "generations": generations})
-    target = int(store.run(run_id).config["generations"])
-    store.set_status(run_id, "running")
-    try:
-        strategy = run_strategy(store, run_id, strategies=strategies)
-        while (last := store.last_generation(run_id)) + 1 < target:
-            if last >= 0 and "fitness" not in strategy.takes:
-                return
-            if last >= 0 and stop is not None and stop():
-                break
-            kept = list(picks(last)) if picks is not None and last >= 0 else None
-            summary = advance(
-                store, run_id, scorer=scorer, spec=spec, strategy=strategy, picks=kept
-            )
-            if on_generation is not None:
-                on_generation(summary)
-    except BaseException:
-        store.set_status(run_id, "failed")
-        raise
-    store.set_status(run_id, "finished")
+    with run_lease(store.root, run_id):  # one process at a time; see store/lease.py
+        info = store.run(run_id)
+        if generations is not None and generations != info.config["generations"]:
+            if generations < info.generations:
+                raise SinewsError(f"run {run_id} already has {info.generations} generations")
+            store.update_config(run_id, {**info.config, "generations": generations})
+        target = int(store.run(run_id).config["generations"])
+        store.set_status(run_id, "running")
+        try:
+            strategy = run_strategy(store, run_id, strategies=strategies)
+            while (last := store.last_generation(run_id)) + 1 < target:
+                if last >= 0 and "fitness" not in strategy.takes:
+                    return
+                if last >= 0 and stop is not None and stop():
+                    break
+                kept = list(picks(last)) if picks is not None and last >= 0 else None
+                summary = advance(
+                    store, run_id, scorer=scorer, spec=spec, strategy=strategy, picks=kept
+                )
+                if on_generation is not None:
+                    on_generation(summary)
+        except BaseException:
+            store.set_status(run_id, "failed")
+            raise
+        store.set_status(run_id, "finished")
 
 
 def record_picks(

@@ -20,6 +20,7 @@ from sinews.experiments.evolution import retune_fitness
 from sinews.experiments.gp.run import TASKS
 from sinews.experiments.run_config import EvolutionConfig
 from sinews.render.replays import draw_replays
+from sinews.store.lease import leased
 from sinews.studio.figure_runs import (
     CONTROLLERS,
     MAX_GENERATIONS,
@@ -65,7 +66,7 @@ def _run_json(studio: Studio, run: FigureRun) -> dict[str, Any]:
         "generations": info.generations,
         "planned": config.generations,
         "status": info.status,
-        "readOnly": info.status == "running" and not jobs.busy(run.id),
+        "readOnly": not jobs.busy(run.id) and leased(studio.store.root, run.id),
         "job": None if job is None else job.to_json(),
         "terms": list(config.fitness.names),
         "fitness": config.fitness.to_dict(),
@@ -129,9 +130,8 @@ def _writable(studio: Studio, run_id: int) -> FigureRun:
     run = studio.figure_runs.get(run_id)
     if studio.figure_jobs.busy(run_id):
         raise RequestError(f"run {run_id} is evolving; pause it first", 409)
-    if run.info.status == "running":
-        raise RequestError(f"run {run_id} is running in another process (if none is, "
-                           f"continue it with: sinews runs resume {run_id})", 409)  # fmt: skip
+    if leased(studio.store.root, run_id):
+        raise RequestError(f"run {run_id} is running in another process", 409)
     return run
 
 

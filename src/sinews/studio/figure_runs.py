@@ -7,8 +7,9 @@ luxo`` or the page); one is opened if it is small enough to show as a grid
 `RunKind.pick`, which stores them with the generation they bred, so
 ``sinews runs resume RUN`` continues a run bit for bit after a studio session.
 
-A run that is ``running`` but not by this studio (`FigureJobs`) belongs to
-another process (the CLI): the page shows it read-only and polls it.
+A run whose lease another process holds (`sinews.store.lease`: the CLI is
+evolving it) is shown read-only and polled; a run left ``running`` by a killed
+process holds no lease, and the page may evolve it on.
 """
 
 from __future__ import annotations
