@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import pytest
@@ -39,6 +40,8 @@ def test_evolve_show_best_render_plot_resume(
     assert "generation 2/2" in err and "best: individual" in out
     status, out, _ = run(capsys, "runs", "show", "1", "--db", db)
     assert status == 0 and "springnet-snake" in out and '"alton"' in out
+    rows = re.findall(r"^ +(\d+) +[-\d.]+ +[-\d.]+ +\d+ *(.*?) *$", out, re.MULTILINE)
+    assert "'picked'" in out and rows == [("0", "2"), ("1", "")]  # generation 0: cell 2
     status, _, err = run(capsys, "runs", "best", "1", "-o", str(tmp_path / "n.json"), "--db", db)
     assert status == 0, err
     assert json.loads((tmp_path / "n.json").read_text())["figure"] == "snake"

@@ -118,12 +118,20 @@ def print_summary(store: RunStore, run_id: int) -> None:
     terms = stats.best_terms if len(stats.best_terms) > 1 else {}  # one term: = best
     phased = config.fitness.phase_in.full > 0 and len(terms) > 1
     full = full_weight_bests(scores, config.fitness) if phased and len(scores.fitness) else None
+    picked: dict[int, list[str]] = {}
+    for pick in store.picks(run_id):
+        picked.setdefault(pick.generation, []).append(str(pick.index))
     title = f"run {run_id}: fitness, and the terms of each generation's best"
+    if picked:
+        title += "; 'picked': the cells a person picked to breed the next"
     if full is not None:
         title += " (style phases in: 'full' rates each generation at full style weight)"
     table = Table(title=title, box=box.SIMPLE_HEAD, collapse_padding=True, show_edge=False)
-    for column in ("gen", "best", *(("full",) if full is not None else ()), "mean", "fail", *terms):
+    full_column = ("full",) if full is not None else ()
+    for column in ("gen", "best", *full_column, "mean", "fail", *terms):
         table.add_column(column, justify="right", min_width=len(column))
+    if picked:
+        table.add_column("picked")
     for k, generation in enumerate(stats.generations):
         table.add_row(
             str(generation),
@@ -132,6 +140,7 @@ def print_summary(store: RunStore, run_id: int) -> None:
             _number(stats.mean[k]),
             str(stats.failed[k]),
             *[_number(values[k]) for values in terms.values()],
+            *((", ".join(picked.get(generation, [])),) if picked else ()),
         )
     console = Console()
     console.print(table)
