@@ -3,6 +3,7 @@ for bit; targets are checked; ``render`` draws a 3D run with MuJoCo's renderer."
 
 from __future__ import annotations
 
+import importlib.util
 from pathlib import Path
 from typing import Any
 
@@ -45,9 +46,23 @@ def test_a_3d_run_is_stored_with_its_task(whole: Path) -> None:
     assert info.config["task_options"]["target"] == [1.0, 0.5]
 
 
-def test_the_same_seed_gives_the_same_3d_run_on_any_executor(whole: Path, tmp_path: Path) -> None:
+@pytest.mark.parametrize(
+    "executor",
+    [
+        "processes",
+        pytest.param(
+            "dask",
+            marks=pytest.mark.skipif(
+                importlib.util.find_spec("distributed") is None, reason="dask not installed"
+            ),
+        ),
+    ],
+)
+def test_the_same_seed_gives_the_same_3d_run_on_any_executor(
+    whole: Path, tmp_path: Path, executor: str
+) -> None:
     pool = tmp_path / "pool.db"
-    assert main([*arguments(), "--executor", "processes", "--workers", "2", "--db", str(pool)]) == 0
+    assert main([*arguments(), "--executor", executor, "--workers", "2", "--db", str(pool)]) == 0
     assert stored(pool) == stored(whole)
 
 
