@@ -223,7 +223,7 @@ def track(
     typical = float(_smoothed(local, period)[np.round(best[2] * fps).astype(np.int64)].mean())
     frames = _beat_frames(local, period, fps, others, SWITCH_BEATS * typical)
     if len(frames) < 2 or abs(float(np.median(np.diff(frames))) * tempo / (60.0 * fps) - 1) > 0.03:
-        return tempo, best[2]  # a change replaces the tempo chosen by fit, not departs from it
+        return tempo, best[2]  # the changes took over the song: keep the tempo the fit chose
     return tempo, frames.astype(np.float64) / fps
 
 
