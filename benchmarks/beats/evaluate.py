@@ -1,6 +1,6 @@
 """Score sinews' beat tracker against the corpus's reference beats, and time it.
 
-    .venv/bin/python benchmarks/beats/evaluate.py [--set tune|heldout|all]
+    .venv/bin/python benchmarks/beats/evaluate.py [--set tune|heldout|confirm|all]
         [--librosa-python /work/evalvenv/bin/python] [--json OUT] [--repeats 3]
 
 Each excerpt (see fetch.py) is decoded once with `sinews.music.load_audio`; `analyse` (the
@@ -53,7 +53,7 @@ def main() -> None:
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cache", type=Path, default=default_cache())
-    parser.add_argument("--set", default="tune", choices=("tune", "heldout", "all"))
+    parser.add_argument("--set", default="tune", choices=("tune", "heldout", "confirm", "all"))
     parser.add_argument("--librosa-python", default=None)
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--json", type=Path, default=None)

@@ -1,6 +1,6 @@
 """What tells a slow metrical level from its double? Two measures per song (docs/beats.md).
 
-    .venv/bin/python benchmarks/beats/levels.py [--set tune|heldout|all]
+    .venv/bin/python benchmarks/beats/levels.py [--set tune|heldout|confirm|all]
 
 For each song with reference beats: our tempo, the reference's, and the level the
 reference is at relative to ours. The pair of levels is (S, 2S) with 2S = our tempo if it
@@ -40,7 +40,7 @@ def main() -> None:
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cache", type=Path, default=default_cache())
-    parser.add_argument("--set", default="tune", choices=("tune", "heldout", "all"))
+    parser.add_argument("--set", default="tune", choices=("tune", "heldout", "confirm", "all"))
     args = parser.parse_args()
     _, songs = load_corpus()
     print("| song | ref BPM | S / 2S | reference at | ratio | alternation: pooled; 5 registers |")

@@ -7,7 +7,16 @@ import pytest
 
 from sinews.errors import SinewsError
 from sinews.music import Audio, analyse, shift_beats
-from sinews.music.beats import HEARD_SLACK_S, onset_envelope, tempo_prior, track
+from sinews.music.beats import (
+    HEARD_SLACK_S,
+    SWITCH_BEATS,
+    _beat_frames,
+    _normalised,
+    _smoothed,
+    onset_envelope,
+    tempo_prior,
+    track,
+)
 
 FPS = 60.0
 
@@ -44,6 +53,41 @@ def test_slow_pulse_with_busy_eighths_is_tapped_in_range() -> None:
     eighths = np.arange(0.2, 40.0, 0.5)
     tempo, _ = track(_clicks(eighths, 40.0), FPS)
     assert 90.0 <= tempo <= 180.0
+
+
+def test_beats_follow_a_change_to_a_related_tempo() -> None:
+    # 125 BPM for 18 s, then 93.75 (a 4:3 change, as in supertux-classic), accented
+    # beats with weak off-beats: at 93.75 alone the first section is missed; with its
+    # relatives as states (as `track` adds them) both sections are followed
+    fast = np.arange(0.3, 18.0, 0.48)
+    slow = np.arange(fast[-1] + 0.64, 50.0, 0.64)
+    beats = np.concatenate([fast, slow])
+    offbeats = np.concatenate([fast + 0.24, slow + 0.32])
+    times = np.concatenate([beats, offbeats])
+    weights = np.concatenate([np.ones(len(beats)), np.full(len(offbeats), 0.3)])
+    order = np.argsort(times)
+    envelope = _normalised(_clicks(times[order], 50.0, weights[order]))
+    period, relatives = 0.64 * FPS, (0.48 * FPS, 0.96 * FPS, 0.427 * FPS)
+
+    def hit(found: np.ndarray, section: np.ndarray) -> float:
+        return float(np.mean(np.abs(section[:, None] - found[None, :] / FPS).min(axis=1) < 0.035))
+
+    fixed = _beat_frames(envelope, period, FPS)
+    typical = float(_smoothed(envelope, period)[fixed].mean())
+    free = _beat_frames(envelope, period, FPS, relatives, SWITCH_BEATS * typical)
+    assert hit(fixed, slow) > 0.95 and hit(fixed, fast[fast > 5.0]) < 0.5
+    assert hit(free, slow) > 0.95 and hit(free, fast[fast > 5.0]) > 0.95
+
+
+def test_steady_beats_do_not_change_tempo() -> None:
+    # a steady song whose relatives are candidates keeps one beat period throughout
+    rng = np.random.default_rng(5)
+    beats = np.arange(0.25, 50.0, 0.5)
+    times = np.sort(np.concatenate([beats, beats + 0.25, beats + 0.375]))
+    weights = np.where(np.isin(times, beats), 1.0, 0.4) * (0.8 + 0.4 * rng.random(len(times)))
+    tempo, found = track(_clicks(times, 50.0, weights), FPS)
+    assert tempo == pytest.approx(120.0, rel=0.02)
+    assert np.all(np.abs(np.diff(found) - 0.5) < 0.03)
 
 
 def test_track_is_deterministic() -> None:

@@ -19,6 +19,11 @@ Programming", J. New Music Research 36(1)) at the metrical level a listener taps
    (as in librosa's implementation of the same method) and of beats before the first
    sound (`_from_first_heard`): the smoothing spreads the first onset up to a period
    back, so a silent intro used to get a beat or more.
+5. Tempo changes: the chosen tempo's 3:4, 4:3, 2:3 and 3:2 relatives that are
+   candidates too become extra states of the same programme; the beats may move to
+   one and back, each change costing `SWITCH_BEATS` typical beats. A beat in a state
+   counts its period's share to the power 1 - `FIT_COUNT_POWER` (as the fit of step 3
+   weighs levels), so a faster state does not win by having more beats.
 """
 
 from __future__ import annotations
@@ -63,6 +68,13 @@ FIT_COUNT_POWER = 0.25
 _REFINE = 0.06
 """A relative's period is refined to the autocorrelation peak within this fraction."""
 
+
+_CHANGES = (0.75, 4.0 / 3.0, 2.0 / 3.0, 1.5)
+"""Tempo ratios the beats may change to within a song (metric modulations)."""
+SWITCH_BEATS = 8.0
+"""A tempo change costs as much as this many typical beats (tuning set: 4 let steady
+songs wander to a relative for a few bars, 12 no longer followed supertux-classic's
+change from 125 to 94 BPM; docs/beats.md)."""
 
 HEARD = 0.1
 """The music is heard from the first frame whose onset envelope reaches this share of
@@ -201,7 +213,18 @@ def track(
             best = (fit, tempo, frames.astype(np.float64) / fps)
     if best is None:
         return math.nan, np.zeros(0)
-    return best[1], best[2]
+    tempo = best[1]
+    others = tuple(
+        60.0 * fps / c for c in candidates if any(abs(c / tempo / r - 1.0) < 0.03 for r in _CHANGES)
+    )
+    if not others:
+        return tempo, best[2]
+    period = 60.0 * fps / tempo
+    typical = float(_smoothed(local, period)[np.round(best[2] * fps).astype(np.int64)].mean())
+    frames = _beat_frames(local, period, fps, others, SWITCH_BEATS * typical)
+    if len(frames) < 2 or abs(float(np.median(np.diff(frames))) * tempo / (60.0 * fps) - 1) > 0.03:
+        return tempo, best[2]  # the changes took over the song: keep the tempo the fit chose
+    return tempo, frames.astype(np.float64) / fps
 
 
 def _fit(local: npt.NDArray[np.float64], frames: npt.NDArray[np.int64]) -> float:
@@ -237,18 +260,41 @@ def track_beats(
 
 
 def _beat_frames(
-    normalised: npt.NDArray[np.float64], period: float, fps: float
+    normalised: npt.NDArray[np.float64],
+    period: float,
+    fps: float,
+    others: tuple[float, ...] = (),
+    switch: float = 0.0,
 ) -> npt.NDArray[np.int64]:
-    """Beat frames of the DP tracker at ``period`` frames on a normalised envelope."""
+    """Beat frames of the DP tracker at ``period`` frames on a normalised envelope.
+
+    With ``others`` (periods in frames), the beats may change to one of those periods
+    and back, each change costing ``switch`` (in units of the smoothed envelope).
+    """
+    local = _smoothed(normalised, period)
+    periods = (period, *others)
+    weight = (np.array(periods) / period) ** (1.0 - FIT_COUNT_POWER)
+    width = round(2 * max(periods)) - round(min(periods) / 2) + 1
+    offsets = np.zeros((len(periods), width), dtype=np.int64)
+    penalty = np.full((len(periods), width), -np.inf)
+    for k, p in enumerate(periods):
+        span = np.arange(-round(2 * p), -round(p / 2) + 1)
+        offsets[k, : len(span)] = span
+        offsets[k, len(span) :] = span[-1]
+        penalty[k, : len(span)] = -TIGHTNESS * weight[k] * np.log(-span / p) ** 2
+    score, back, back_state = _dynamic_programme(
+        local, offsets, penalty, weight, switch, 0.01 * float(local.max())
+    )
+    frames = _trim_weak(_backtrack(score, back, back_state), local)
+    return _from_first_heard(frames, normalised, round(HEARD_SLACK_S * fps))
+
+
+def _smoothed(normalised: npt.NDArray[np.float64], period: float) -> npt.NDArray[np.float64]:
+    """The envelope blurred by a Gaussian of ``period / 32`` frames (Ellis's DP input)."""
     kernel_half = max(1, round(period))
     kernel = np.exp(-0.5 * (np.arange(-kernel_half, kernel_half + 1) * 32.0 / period) ** 2)
     # "same" by hand: np.convolve's "same" is as long as the kernel when the song is shorter
-    local = np.convolve(normalised, kernel)[kernel_half : kernel_half + len(normalised)]
-    offsets = np.arange(-round(2 * period), -round(period / 2) + 1)
-    penalty = -TIGHTNESS * np.log(-offsets / period) ** 2
-    back, score = _dynamic_programme(local, offsets, penalty, 0.01 * float(local.max()))
-    frames = _trim_weak(_backtrack(back, score), local)
-    return _from_first_heard(frames, normalised, round(HEARD_SLACK_S * fps))
+    return np.convolve(normalised, kernel)[kernel_half : kernel_half + len(normalised)]
 
 
 def _from_first_heard(
@@ -262,45 +308,81 @@ def _from_first_heard(
 
 
 @njit(cache=True)
-def _dynamic_programme(local, offsets, penalty, clear):  # type: ignore[no-untyped-def]
-    """Best cumulative score of a beat sequence ending at each frame, and its predecessor.
+def _dynamic_programme(local, offsets, penalty, weight, switch, clear):  # type: ignore[no-untyped-def]
+    """Best cumulative score of a beat sequence ending at each frame in each tempo state.
 
-    Predecessors lie between two and half a period back; one before the song's
-    start counts as a virtual beat of score 0. Until the first clear onset
-    (``clear``) no frame links back, so the sequence starts there.
-    A predecessor of -1 ends a backtrack.
+    State k follows period k: its predecessors lie ``offsets[k, :]`` frames back
+    (between two and half of its period; padding has penalty -inf). A beat in state k
+    scores ``weight[k]`` times its onset plus its interval's penalty. A predecessor in
+    another state costs ``switch`` more. One before the song's start counts as a
+    virtual beat of score 0 in state 0 (``-switch`` in the others). Until the first
+    clear onset (``clear``) no frame links back, so the sequence starts there.
+
+    Returns:
+        (T, K) scores, (T, K) predecessor frames (-1 ends a backtrack) and (T, K)
+        predecessor states.
     """
     n = len(local)
-    score = np.zeros(n)
-    back = np.full(n, -1, dtype=np.int64)
+    n_states = offsets.shape[0]
+    score = np.zeros((n, n_states))
+    back = np.full((n, n_states), -1, dtype=np.int64)
+    back_state = np.zeros((n, n_states), dtype=np.int64)
+    top = np.zeros(n)
+    top_state = np.zeros(n, dtype=np.int64)
     started = False
     for t in range(n):
-        best_value = -np.inf
-        best_pred = -1
-        for j in range(len(offsets)):
-            pred = t + offsets[j]
-            value = penalty[j] + (score[pred] if pred >= 0 else 0.0)
-            if value > best_value:
-                best_value = value
-                best_pred = pred
-        score[t] = local[t] + best_value
-        if started or local[t] >= clear:
-            back[t] = max(best_pred, -1)
+        if local[t] >= clear:
             started = True
-    return back, score
+        for k in range(n_states):
+            best_value = -np.inf
+            best_pred = -1
+            best_state = k
+            for j in range(offsets.shape[1]):
+                pred = t + offsets[k, j]
+                value = penalty[k, j]
+                state = k
+                if pred < 0 and k > 0:
+                    value -= switch
+                elif pred >= 0:
+                    stay = score[pred, k]
+                    if top[pred] - switch > stay:
+                        stay = top[pred] - switch
+                        state = top_state[pred]
+                    value += stay
+                if value > best_value:
+                    best_value = value
+                    best_pred = pred
+                    best_state = state
+            score[t, k] = weight[k] * local[t] + best_value
+            if started:
+                back[t, k] = max(best_pred, -1)
+                back_state[t, k] = best_state
+        best_k = 0
+        for k in range(1, n_states):
+            if score[t, k] > score[t, best_k]:
+                best_k = k
+        top[t] = score[t, best_k]
+        top_state[t] = best_k
+    return score, back, back_state
 
 
 def _backtrack(
-    back: npt.NDArray[np.int64], score: npt.NDArray[np.float64]
+    score: npt.NDArray[np.float64],
+    back: npt.NDArray[np.int64],
+    back_state: npt.NDArray[np.int64],
 ) -> npt.NDArray[np.int64]:
-    """Follow predecessors from the last strong local maximum of the cumulative score."""
-    peaks = np.flatnonzero((score[1:-1] > score[:-2]) & (score[1:-1] >= score[2:])) + 1
+    """Follow predecessors from the last strong local maximum of the best cumulative score."""
+    best = score.max(axis=1)
+    peaks = np.flatnonzero((best[1:-1] > best[:-2]) & (best[1:-1] >= best[2:])) + 1
     if len(peaks) == 0:
         return np.zeros(0, dtype=np.int64)
-    strong = peaks[score[peaks] >= 0.5 * np.median(score[peaks])]
-    beats = [int(strong[-1])]
-    while back[beats[-1]] >= 0:
-        beats.append(int(back[beats[-1]]))
+    strong = peaks[best[peaks] >= 0.5 * np.median(best[peaks])]
+    frame = int(strong[-1])
+    state = int(np.argmax(score[frame]))
+    beats = [frame]
+    while back[frame, state] >= 0:
+        frame, state = int(back[frame, state]), int(back_state[frame, state])
+        beats.append(frame)
     return np.array(beats[::-1], dtype=np.int64)
 
 
