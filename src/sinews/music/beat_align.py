@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import numpy as np
 import numpy.typing as npt
-import scipy.ndimage
 
 __all__ = [
     "LIFT_SHIFTS",
@@ -78,7 +77,8 @@ def kinematic_beats(positions: npt.NDArray[np.floating], fps: float) -> npt.NDAr
     """
     if len(positions) < 3:
         return np.zeros(0, dtype=np.int64)
-    import scipy.signal  # here, not at the top: 1-4 s of every start that scores no pauses
+    import scipy.ndimage  # here, not at the top: 1-4 s of every start that scores no pauses
+    import scipy.signal
 
     speed = scipy.ndimage.gaussian_filter1d(mean_speed(positions, fps), SMOOTH_S * fps)
     pauses, _ = scipy.signal.find_peaks(-speed)
@@ -185,5 +185,7 @@ def smoothness(positions: npt.NDArray[np.floating], fps: float) -> float:
         return 1.0
     # Gaussian gain exp(-(2 pi f sigma)^2 / 2) is 1/2 at f = cutoff
     sigma = np.sqrt(2.0 * np.log(2.0)) / (2.0 * np.pi * SMOOTH_CUTOFF_HZ) * fps
+    import scipy.ndimage
+
     slow = scipy.ndimage.gaussian_filter1d(velocity, sigma, axis=0, mode="nearest")
     return float(min(1.0, np.sum(slow**2) / total))

@@ -30,12 +30,14 @@ from __future__ import annotations
 
 import itertools
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 import numpy.typing as npt
-import scipy.interpolate
-import scipy.ndimage
 from numba import njit
+
+if TYPE_CHECKING:
+    import scipy.interpolate
 
 __all__ = [
     "beat_phase",
@@ -112,6 +114,9 @@ def onset_envelope(
 
 def _comb(envelope: npt.NDArray[np.float64], fps: float) -> scipy.interpolate.CubicSpline | None:
     """The envelope's autocorrelation as a cubic spline of the lag (None if flat or short)."""
+    import scipy.interpolate  # here, not at the top: 1-2 s of a start that analyses nothing
+    import scipy.ndimage
+
     smooth = scipy.ndimage.gaussian_filter1d(envelope, TEMPO_SMOOTH_S * fps)
     centred = smooth - smooth.mean()
     n = len(centred)

@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import numpy as np
 import numpy.typing as npt
-import scipy.fft
 
 from sinews.music.decode import Audio
 from sinews.music.spectrum import frame_count
@@ -49,6 +48,8 @@ def classic_spectra(samples: npt.NDArray[np.float32]) -> npt.NDArray[np.float32]
     Returns:
         (U, 512) float32 magnitudes ``2/1024·|FFT|`` of bins 0–511, U = S // 1024.
     """
+    import scipy.fft  # here, not at the top: a start that analyses nothing skips it
+
     n_blocks = len(samples) // BLOCK_SIZE
     blocks = np.asarray(samples[: n_blocks * BLOCK_SIZE], dtype=np.float32)
     spectrum = scipy.fft.rfft(blocks.reshape(n_blocks, BLOCK_SIZE), axis=1)

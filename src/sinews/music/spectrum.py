@@ -13,7 +13,6 @@ import math
 
 import numpy as np
 import numpy.typing as npt
-import scipy.fft
 
 __all__ = [
     "DEFAULT_BANDS",
@@ -108,6 +107,8 @@ def band_power(
     Returns:
         (T, B) float32 band powers, T = `frame_count`.
     """
+    import scipy.fft  # here, not at the top: a start that analyses nothing skips it
+
     half = n_fft // 2
     n_frames = frame_count(len(samples), sample_rate, fps)
     centres = np.round(np.arange(n_frames) * (sample_rate / fps)).astype(np.int64)
