@@ -94,7 +94,7 @@ def translate(
         tree_start: (P·J + 1,) first node of each tree, then N.
         const_start: (P·J + 1,) first constant of each tree, then C.
         n_trees: J.
-        n_inputs: V, the input slots per individual (more than any terminal read).
+        n_inputs: V, input slots per individual (more than the highest terminal read).
 
     Returns:
         ``(instructions, first, result, n_slots)``: (F, 5) uint32 rows
@@ -102,8 +102,6 @@ def translate(
         instruction of each individual, then F; (P·J,) slot of each tree's
         value; S.
     """
-    arity = np.zeros(VAR, dtype=np.int64)
-    arity[:] = ARITY
     n_all = len(tree_start) - 1
     n_functions = 0
     height = 0  # the tallest stack any tree needs
@@ -116,7 +114,7 @@ def translate(
                 height = max(height, h)
             else:
                 n_functions += 1
-                h -= arity[op] - 1
+                h -= ARITY[op] - 1
     const_base = n_all // n_trees * n_inputs
     temp_base = const_base + const_start[-1]
     postfix = np.empty((n_functions, 5), dtype=np.uint32)  # tree by tree
@@ -135,7 +133,7 @@ def translate(
                 c -= 1
                 stack[top] = const_base + c
             else:
-                k = arity[op]
+                k = ARITY[op]
                 a = stack[top - 1]  # the first argument is the last pushed
                 postfix[n, 0] = op
                 postfix[n, 1] = a
