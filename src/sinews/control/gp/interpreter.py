@@ -131,7 +131,8 @@ class PackedPopulation:
         result = np.empty(shape) if out is None else out
         run = kernels.evaluate if parallel else kernels.evaluate_serial
         instructions, first, tree_slot, slots = self._machine
-        run(instructions, first, tree_slot, rows[:, : self._terminals_read], slots, result)
+        read = np.ascontiguousarray(rows[:, : self._terminals_read])  # one numba signature
+        run(instructions, first, tree_slot, read, slots, result)
         return result
 
 
