@@ -1,8 +1,10 @@
 """Evaluating a population of programs: the packed numba interpreter and a numpy reference.
 
-`PackedPopulation` concatenates every individual's trees once per generation;
-its `evaluate` then answers all (P, J) tree values for a (P, V) input array in
-one numba call (serial by default, or parallel over individuals). The
+`PackedPopulation` concatenates every individual's trees once per generation
+(the stored form); its first `evaluate` translates them into the register
+machine of `sinews.control.gp.kernels`, and every call then answers all (P,
+J) tree values for a (P, V) input array in one numba call (serial by
+default, or parallel over individuals). The
 reference, `reference_tree`, evaluates one tree with numpy over many input
 rows by recursion on the prefix codes; it defines the semantics the kernel
 must match and is kept for tests and benchmarks.
@@ -88,9 +90,21 @@ class PackedPopulation:
         return max(0, int(self.code.max()) - VAR + 1)
 
     @cached_property
-    def _stack(self) -> FloatArray:
-        """(P, L) value-stack scratch; L, the longest tree, bounds the stack's height."""
-        return np.empty((self.n_programs, int(np.diff(self.tree_start).max())))
+    def _machine(self) -> tuple[npt.NDArray[np.uint32], npt.NDArray[np.int64],
+                                npt.NDArray[np.int64], FloatArray]:  # fmt: skip
+        """`kernels.translate`'s instructions, first and result, and the slots (constants
+        filled in)."""
+        trees, longest = self.n_programs * self.n_trees, int(np.diff(self.tree_start).max())
+        most = self.n_programs * self._terminals_read + self.consts.size + trees * longest
+        if most >= 2**32:  # the kernels index slots with uint32
+            raise GPError(f"a population of {self.code.size} nodes is too large to evaluate")
+        instructions, first, result, n_slots = kernels.translate(
+            self.code, self.tree_start, self.const_start, self.n_trees, self._terminals_read
+        )
+        slots = np.zeros(n_slots)
+        const_base = self.n_programs * self._terminals_read
+        slots[const_base : const_base + self.consts.size] = self.consts
+        return instructions, first, result, slots
 
     def evaluate(
         self, inputs: FloatArray, out: FloatArray | None = None, *, parallel: bool = False
@@ -107,7 +121,7 @@ class PackedPopulation:
             (P, J) tree values (non-finite where the arithmetic overflowed).
         """
         shape = (self.n_programs, self.n_trees)
-        rows = np.ascontiguousarray(inputs, dtype=np.float64)
+        rows = np.asarray(inputs, dtype=np.float64)
         if rows.ndim != 2 or rows.shape[0] != self.n_programs:
             raise GPError(f"inputs must have shape ({self.n_programs}, V), got {rows.shape}")
         if self._terminals_read > rows.shape[1]:
@@ -116,7 +130,9 @@ class PackedPopulation:
             )
         result = np.empty(shape) if out is None else out
         run = kernels.evaluate if parallel else kernels.evaluate_serial
-        run(self.code, self.consts, self.tree_start, self.const_start, rows, result, self._stack)
+        instructions, first, tree_slot, slots = self._machine
+        read = np.ascontiguousarray(rows[:, : self._terminals_read])  # one numba signature
+        run(instructions, first, tree_slot, read, slots, result)
         return result
 
 
