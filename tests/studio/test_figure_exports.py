@@ -15,8 +15,8 @@ import numpy as np
 import pytest
 from PIL import Image
 from playwright.sync_api import expect
-from test_figure_studio import GP, SPRINGNET, call, sinews
 
+from figure_page_helpers import GP, SPRINGNET, call, sinews
 from sinews.store import RunStore
 from studio_helpers import StudioServer
 
@@ -114,8 +114,8 @@ def test_the_staged_figure_exports_as_the_cli_writes_it(
         assert json.loads(made["genome.json"])["program"] + "\n" == made["program.txt"].decode()
     assert made["strobe.png"][:8] == b"\x89PNG\r\n\x1a\n"
     with RunStore(export_db) as store:
-        media = [Path(m.path) for m in store.media(run) if m.individual_id == individual]
-    kept = {p.name.rsplit("-", 1)[1] for p in media if p.parent.name == "exports"}
+        files = [Path(m.path) for m in store.media(run) if m.individual_id == individual]
+    kept = {p.name.rsplit("-", 1)[1] for p in files if p.parent.name == "exports"}
     assert kept == set(made)
     again = fetch(export_server, f"{route}/strobe.png")[2]  # asked again: the kept file
     assert again == made["strobe.png"]
