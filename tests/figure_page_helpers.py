@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import json
+import os
+import shutil
 import subprocess
 import time
 import urllib.error
@@ -68,3 +70,16 @@ def stored(db: Path, run: int) -> list[tuple[int, int, Any, float | None, bool]]
              p.fitness, p.picked)
             for p in store.individuals(run)
         ]  # fmt: skip
+
+
+DOCS = Path(__file__).resolve().parents[1] / "docs"
+
+
+def doc_shot(part: Any, shots: Path, name: str) -> Path:
+    """Screenshot a page or an element to ``shots/name``; with ``SINEWS_FIGURE_DOCS`` set, also
+    to ``docs/name`` (the figure studio's pictures in docs/figure-studio.md)."""
+    path = shots / name
+    part.screenshot(path=path)
+    if os.environ.get("SINEWS_FIGURE_DOCS"):
+        shutil.copy(path, DOCS / name)
+    return path

@@ -16,7 +16,7 @@ import pytest
 from PIL import Image
 from playwright.sync_api import expect
 
-from figure_page_helpers import GP, SPRINGNET, call, sinews
+from figure_page_helpers import GP, SPRINGNET, call, doc_shot, sinews
 from sinews.store import RunStore
 from studio_helpers import StudioServer
 
@@ -72,6 +72,7 @@ def best_id(db: Path, env: dict[str, str], run: int) -> int:
     return int(done.stdout.split("(individual ", 1)[1].split(",")[0])
 
 
+@pytest.mark.slow  # ~25 s each at load 7: four CLI processes to compare with, two videos
 @pytest.mark.parametrize("run", [1, 2])
 def test_the_staged_figure_exports_as_the_cli_writes_it(
     export_server: StudioServer,
@@ -175,7 +176,12 @@ def test_the_page_downloads_each_export_of_the_staged_figure(
         with Image.open(saved[what]) as picture:
             pixels = np.asarray(picture.convert("L"), dtype=float)
         assert pixels.std() > 10 and (pixels < 128).mean() > 0.005, what  # not blank
-    page.screenshot(path=shots / "figure-exports.png")
+    page.locator("#program").evaluate("(program) => { program.scrollTop = 0; }")
+    doc_shot(page.locator("#stage-box"), shots, "figure-studio-program.png")
+    page.set_viewport_size({"width": 1600, "height": 1200})  # the message line and the buttons
+    page.evaluate("scrollTo(0, 0)")
+    doc_shot(page, shots, "figure-studio-exports.png")
     page.goto(f"{export_server.url}figures?run=1")  # a spring net has no program to export
     page.wait_for_function("window.figures && figures.pack && figures.run.id === 1")
     expect(page.locator("#exports button[data-file='program.txt']")).to_be_disabled()
+    doc_shot(page.locator("#stage-box"), shots, "figure-studio-net.png")

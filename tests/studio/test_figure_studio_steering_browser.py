@@ -12,17 +12,22 @@ from typing import Any
 import pytest
 from playwright.sync_api import expect
 
-from figure_page_helpers import sinews, stored
+from figure_page_helpers import doc_shot, sinews, stored
 from sinews.store import RunStore
 from studio_helpers import StudioServer
 
 LOADED = "window.figures && figures.pack && !document.body.classList.contains('busy')"
+SEEK_END = """() => {
+  const slider = document.getElementById("seek");
+  slider.value = String(Math.round(0.6 * Number(slider.max)));
+  slider.dispatchEvent(new Event("input"));
+}"""
 SNAKE = {"population": "5", "generations": "200", "seconds": "0.5", "seed": "7"}
 
 
 @pytest.mark.slow  # ~55 s at load 4: two studio starts and the CLI's twin run, each a process
 def test_a_page_run_survives_a_killed_server_and_ends_as_the_cli_run(
-    page: Any, tmp_path: Path, studio_env: dict[str, str]
+    page: Any, tmp_path: Path, studio_env: dict[str, str], shots: Path
 ) -> None:
     db = tmp_path / "studio.db"
     server = StudioServer(db, studio_env)
@@ -32,6 +37,14 @@ def test_a_page_run_survives_a_killed_server_and_ends_as_the_cli_run(
         page.select_option("#form-figure", "snake")
         for field, value in SNAKE.items():
             page.fill(f"#form-{field}", value)
+        page.select_option("#form-controller", "gp")  # the form as it looks for a GP hop
+        page.select_option("#form-figure", "luxo")
+        page.select_option("#form-task", "hop")
+        box = page.locator("#form-floor").bounding_box()
+        page.mouse.click(box["x"] + 0.4 * box["width"], box["y"] + 0.8 * box["height"])
+        doc_shot(page.locator("#new-run"), shots, "figure-studio-form.png")
+        page.select_option("#form-controller", "springnet")
+        page.select_option("#form-figure", "snake")
         page.click("#start-run")
         page.wait_for_function("figures.run && figures.run.generations >= 3 && figures.pack")
         run = page.evaluate("figures.run.id")
@@ -77,7 +90,7 @@ def gp_server(
 
 
 def test_a_style_weight_set_with_its_slider_is_stored_with_the_run(
-    page: Any, gp_server: tuple[StudioServer, Path]
+    page: Any, gp_server: tuple[StudioServer, Path], shots: Path
 ) -> None:
     server, db = gp_server
     with RunStore(db) as store:
@@ -99,10 +112,11 @@ def test_a_style_weight_set_with_its_slider_is_stored_with_the_run(
         config = store.run(1).config
     assert config["fitness"]["weights"]["head"] == highest
     assert config["fitness_history"] == [{"until": 3, "fitness": before}]
+    doc_shot(page.locator("#evolve-box"), shots, "figure-studio-fitness.png")
 
 
 def test_the_learning_timeline_plays_each_generations_best_in_turn(
-    page: Any, gp_server: tuple[StudioServer, Path]
+    page: Any, gp_server: tuple[StudioServer, Path], shots: Path
 ) -> None:
     server, _ = gp_server
     page.goto(f"{server.url}figures?run=1")
@@ -119,3 +133,6 @@ def test_the_learning_timeline_plays_each_generations_best_in_turn(
     assert [title.rsplit(" #", 1)[0] for title in seen] == [
         f"Learning timeline, best of: generation {g}" for g in (1, 2, 0)
     ]
+    page.click("#play")  # hold a frame for the picture
+    page.evaluate(SEEK_END)
+    doc_shot(page.locator("#stage-box"), shots, "figure-studio-timeline.png")
