@@ -6,9 +6,9 @@ import { download } from "../api.js";
 
 /**
  * Wire the buttons of #exports.
- * @param {{run: function(): object, staged: function(): object, say: function(string, boolean=),
- *   attempt: function(function(): Promise)}} page the run shown, the person on the stage
- *   (a pack's individual), and the page's message line
+ * @param {{run: function(): ?object, staged: function(): ?object,
+ *   say: function(string, boolean=), attempt: function(function(): Promise)}} page the run
+ *   shown, the person on the stage (a pack's individual, or null), and the page's message line
  * @returns {{show: function(object)}} call `show(person)` when the stage changes
  */
 export function exportButtons(page) {
@@ -16,10 +16,11 @@ export function exportButtons(page) {
   const buttons = [...box.querySelectorAll("button")];
   for (const button of buttons) {
     button.addEventListener("click", () => page.attempt(async () => {
-      const run = page.run(), file = button.dataset.file;
+      const run = page.run(), file = button.dataset.file, person = page.staged();
+      if (!run || (!person && file !== "plot.png")) throw new Error("no figure on the stage yet");
       const url = file === "plot.png"
         ? `/api/figures/runs/${run.id}/plot.png`
-        : `/api/figures/runs/${run.id}/individuals/${page.staged().id}/${file}`;
+        : `/api/figures/runs/${run.id}/individuals/${person.id}/${file}`;
       page.say(`making ${button.textContent.toLowerCase()}…`);
       for (const b of buttons) b.disabled = true;
       try {

@@ -534,7 +534,7 @@ $("timeline-mp4").addEventListener("click", () => attempt(async () => {
 }));
 const exportsBar = exportButtons({
   run: () => figures.run,
-  staged: () => { const { pack, i } = staged(); return pack.header.individuals[i]; },
+  staged: () => { const { pack, i } = staged(); return pack ? pack.header.individuals[i] : null; },
   say,
   attempt,
 });
