@@ -48,6 +48,7 @@ class StudioServer:
     """``sinews studio`` in a subprocess; ``url`` once it listens."""
 
     def __init__(self, db: Path, env: dict[str, str], *args: str) -> None:
+        self.db = db
         command = [*sinews_command(), "studio", "--no-browser", "--port", "0"]
         self.process = subprocess.Popen(
             [*command, "--db", str(db), *args],

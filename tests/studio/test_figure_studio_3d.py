@@ -11,7 +11,9 @@ from typing import Any
 import numpy as np
 import pytest
 
+from figure_page_helpers import call, sinews
 from killed_runs import sinews_command
+from sinews.store import RunStore
 from studio_helpers import CHROMIUM, CHROMIUM_ARGS, INK, StudioServer, decode_pack
 
 pytest.importorskip("mujoco")
@@ -96,3 +98,18 @@ def test_the_page_draws_3d_lamps_and_the_stage_orbits(
     after = page.evaluate(CAMERA)
     assert not np.allclose(before, after)  # the camera turned about the lamp
     page.evaluate("window.dispatchEvent(new Event('resize'))")
+
+
+@pytest.mark.slow  # ~30 s at load 10: two CLI renders through OSMesa to compare with
+def test_a_3d_figure_exports_through_mujocos_renderer_as_the_cli(
+    server: StudioServer, studio_env: dict[str, str], tmp_path: Path
+) -> None:
+    db = server.db
+    with RunStore(db) as store:
+        person = store.individuals(1, 0)[2]
+    for what, suffix in (("strobe.png", "png"), ("figure.mp4", "mp4")):
+        status, data = call(server, f"/api/figures/runs/1/individuals/{person.id}/{what}", {})
+        assert status == 200 and isinstance(data, bytes), data
+        theirs = tmp_path / f"cli.{suffix}"
+        sinews(db, studio_env, "render", "1", "--individual", str(person.id), "-o", str(theirs))
+        assert data == theirs.read_bytes(), what  # MuJoCo's picture, off the worker thread too

@@ -201,6 +201,6 @@ def test_songs_are_found_by_generated_ids_only(tmp_path: Path, studio_home: None
 def test_the_studio_benchmark_runs(studio_home: None) -> None:
     from sinews.benchmarks import studio
 
-    cases = studio.run(scale="quick")
+    cases = studio.dancer_breeding(scale="quick")
     assert [m.unit for m in cases] == ["generations/s", "encodes/s", "dancer-seconds/MB"]
     assert all(m.ours > 0 and m.reference > 0 for m in cases)

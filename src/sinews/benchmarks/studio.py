@@ -16,6 +16,9 @@ Cases (each against a reference timed in the same run, taking turns):
 - the size of that payload, as dancer-seconds per megabyte.
 
 The song is the ``groove`` demo repeated to 60 s (10 s in quick mode).
+
+Then the figure page in Chromium: a generation of 20 lamps bred and shown,
+and input latency while runs evolve (`sinews.benchmarks._figure_page`).
 """
 
 from __future__ import annotations
@@ -29,7 +32,8 @@ from pathlib import Path
 
 import numpy as np
 
-from sinews.benchmarks._measure import Measurement, Scale, best_time
+from sinews.benchmarks._figure_page import figure_page
+from sinews.benchmarks._measure import Measurement, Result, Scale, best_time
 from sinews.evolve import SerialEvaluator
 from sinews.experiments.dancers.run import KIND
 from sinews.music import demo_song, save_wav
@@ -39,7 +43,7 @@ from sinews.studio.pack import encode_pack, millimetres
 from sinews.studio.runs import StudioRuns
 from sinews.studio.songs import SongLibrary
 
-__all__ = ["run"]
+__all__ = ["dancer_breeding", "run"]
 
 PICKS = [2, 5]
 
@@ -62,7 +66,13 @@ def _turns(cases: dict[str, Callable[[], object]], rounds: int) -> dict[str, flo
     return best
 
 
-def run(scale: Scale = "full") -> list[Measurement]:
+def run(scale: Scale = "full") -> list[Result]:
+    """The dancers' breeding (`dancer_breeding`), then the figure page in Chromium
+    (`sinews.benchmarks._figure_page`)."""
+    return [*dancer_breeding(scale), *figure_page(scale)]
+
+
+def dancer_breeding(scale: Scale = "full") -> list[Measurement]:
     """Breed P = 16 dancers on a 60 s song (quick: 10 s), and encode their motion."""
     quick = scale != "full"
     seconds = 10.0 if quick else 60.0

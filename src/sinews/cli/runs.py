@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Annotated
 
@@ -15,9 +14,10 @@ from sinews.cli.progress import frame_progress
 from sinews.cli.report import print_summary, run_with_progress
 from sinews.errors import SinewsError
 from sinews.evolve import make_evaluator
-from sinews.experiments.evolution import full_weight_bests, full_weight_fitness
+from sinews.experiments.evolution import full_weight_fitness
 from sinews.experiments.kinds import best_of, chosen_of, kind_of
 from sinews.experiments.run_config import EvolutionConfig
+from sinews.experiments.run_files import fitness_plot, genome_file
 from sinews.limits import MAX_GENERATIONS, MAX_PICTURE_PIXELS, MAX_RUN_ID, MIN_PICTURE_PIXELS
 from sinews.store import (
     Individual,
@@ -124,14 +124,7 @@ def best(run: Run, output: Output, db: Db = None) -> None:
     with open_store(db, readonly=True) as store:
         individual = best_of(store, run)
         info = store.run(run)
-        kind = kind_of(info)
-        if output.suffix.lower() == ".txt":
-            text = kind.genome_text(individual)
-            if text is None:
-                raise SinewsError(f"run {run}'s genomes have no text form; write a .json")
-        else:
-            text = json.dumps(kind.genome_document(store, individual), indent=1)
-        write_text(output, text + "\n")
+        write_text(output, genome_file(store, individual, text=output.suffix.lower() == ".txt"))
         seed = "" if individual.seed is None else f", seed {individual.seed}"
         rated = _rated(individual, EvolutionConfig.from_dict(info.config))
         typer.echo(
@@ -288,28 +281,8 @@ def _generation_bests(store: RunStore, run: int, generations: str) -> list[Indiv
 
 def plot(run: Run, output: Output, db: Db = None) -> None:
     """Plot best and mean fitness per generation and the terms of each generation's best."""
-    from sinews.render import plot_fitness
-
     with open_store(db) as store:
-        info = store.run(run)
-        if EvolutionConfig.from_dict(info.config).by_hand:
-            raise SinewsError(f"run {run} is bred by hand: it has picks, not fitness, to plot")
-        stats = generation_stats(store.scores(run))
-        if not len(stats.generations):
-            raise SinewsError(f"run {run} has no scored generations yet")
-        spec = EvolutionConfig.from_dict(info.config).fitness
-        weighed = {k: v for k, v in stats.best_terms.items() if spec.weights.get(k, 1.0) != 0}
-        terms = weighed if len(weighed) > 1 else {}  # one term: = best; weight 0: not rated
-        series = {"best": stats.best, "mean": stats.mean, **terms}
-        marks: dict[str, float] = {}
-        if spec.phase_in.full > 0 and len(weighed) > 1:  # early bests are rated without style
-            series["best at full weight"] = full_weight_bests(store.scores(run), spec)
-            marks = {"style starts": spec.phase_in.start, "style full": spec.phase_in.full}
-        song = info.config.get("song", "")
-        title = f"run {run}: {info.kind}{f' to {song}' if song else ''}"
-        title += " (terms of each best)" if terms else ""
-        title += f", seed {info.seed}\n{kind_of(info).fitness_label}"
-        path = plot_fitness(stats.generations, series, output, title, marks=marks)
+        path = fitness_plot(store, run).draw(output)
         store.add_media(run, path, kind=path.suffix.lstrip(".").lower())
     typer.echo(f"wrote {path}")
 

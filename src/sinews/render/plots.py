@@ -59,7 +59,13 @@ def plot_fitness(
     axes = fig.subplots(len(panels), 1, sharex=True, squeeze=False)[:, 0]
     for ax, (group, label) in zip(axes, panels, strict=True):
         for name, values in group.items():
-            ax.plot(x, values, label=name, linewidth=2.0 if group is headline else 1.2)
+            ax.plot(
+                x,
+                values,
+                label=name,
+                linewidth=2.0 if group is headline else 1.2,
+                marker="o" if len(x) == 1 else None,
+            )  # one generation: a dot, not nothing
         for k, (name, generation) in enumerate((marks or {}).items()):
             ax.axvline(generation, color="0.45", linestyle=":", linewidth=1.0)
             if ax is axes[0]:

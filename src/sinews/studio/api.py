@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import mimetypes
 import time
+from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 from urllib.parse import unquote
 
@@ -25,6 +27,7 @@ from sinews.studio.exports import (
     dance_for,
     export_name,
     genome_json,
+    kept_file,
     write_dancer,
     write_sheet,
 )
@@ -241,14 +244,13 @@ async def export(request: Request) -> Response:
     attachment = {"Content-Disposition": f'attachment; filename="{name}"'}
     if kind == "json":
         return Response(genome_json(dancer), media_type=MEDIA_TYPES[kind], headers=attachment)
-    traj = await worker.run(lambda s: dance_for(dancer, kind))
-    folder = worker.settings.data_dir / "exports"
-    path = await run_in_threadpool(write_dancer, traj, dancer, kind, folder)
+
+    def prepare(studio: Studio) -> Callable[[Path], object]:
+        traj = dance_for(dancer, kind)
+        return lambda path: write_dancer(traj, dancer, kind, path)
+
     person = dancer.individual
-    await worker.run(
-        lambda s: s.store.add_media(person.run_id, path, kind=kind, individual_id=person.id)
-    )
-    return FileResponse(path, media_type=MEDIA_TYPES[kind], filename=name)
+    return await kept_file(worker, person.run_id, name, prepare, individual_id=person.id)
 
 
 async def list_songs(request: Request) -> JSONResponse:

@@ -1,21 +1,28 @@
-"""Files the studio hands out: a dancer's genome, GIF and MP4 (with the song), a contact sheet.
+"""Files the studio hands out: a dancer's genome, GIF and MP4 (with the song), a contact sheet;
+and the one way every export is kept (`kept_file`).
 
 Drawing goes through `sinews.render`; this module only decides sizes and
-names. A dancer's files are written to the studio's export folder under
-names made from run, generation, dancer and a digest of everything the
-picture depends on, so asking twice reuses the first file.
+names. Files are written to the studio's export folder under names made
+from run, generation, individual and a digest of everything the picture
+depends on, so asking twice reuses the first file; each is recorded in the
+run's media.
 """
 
 from __future__ import annotations
 
 import hashlib
 import json
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
+from starlette.concurrency import run_in_threadpool
+from starlette.responses import FileResponse
+
+from sinews.files import atomic_path
 from sinews.render import contact_sheet, render
 from sinews.store import Individual
 from sinews.studio.motion import StageDancer
+from sinews.studio.service import Studio, Worker
 from sinews.trajectory import Trajectory
 
 __all__ = [
@@ -24,9 +31,11 @@ __all__ = [
     "dance_for",
     "export_name",
     "genome_json",
+    "kept_file",
     "sheet_name",
     "write_dancer",
     "write_sheet",
+    "write_text",
 ]
 
 GIF_SECONDS = 20.0
@@ -42,7 +51,47 @@ MEDIA_TYPES = {
     "gif": "image/gif",
     "mp4": "video/mp4",
     "png": "image/png",
+    "txt": "text/plain; charset=utf-8",
 }
+
+
+async def kept_file(
+    worker: Worker,
+    run_id: int,
+    name: str,
+    prepare: Callable[[Studio], Callable[[Path], object]],
+    *,
+    individual_id: int | None = None,
+) -> FileResponse:
+    """Answer a POST for ``exports/<name>``, made unless an earlier request made it, and
+    recorded in the run's media.
+
+    Args:
+        worker: the studio's worker.
+        run_id: the run the file is made from.
+        name: the file's name, made by the server from ids and digests, ending in a suffix
+            of `MEDIA_TYPES`.
+        prepare: runs on the worker (reads the store, replays) and returns what writes the
+            file to a path it is given (atomically), which then runs off the worker thread.
+        individual_id: the individual the file shows, if one.
+    """
+    path = worker.settings.data_dir / "exports" / name
+    kind = path.suffix[1:]
+    if not path.is_file():
+        write = await worker.run(prepare)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        await run_in_threadpool(write, path)
+    await worker.run(
+        lambda s: s.store.add_media(run_id, path, kind=kind, individual_id=individual_id)
+    )
+    return FileResponse(path, media_type=MEDIA_TYPES[kind], filename=name)
+
+
+def write_text(path: Path, text: str) -> Path:
+    """Write ``text`` to ``path`` atomically."""
+    with atomic_path(path) as tmp:
+        tmp.write_text(text, encoding="utf-8")
+    return path
 
 
 def export_name(dancer: StageDancer, kind: str) -> str:
@@ -69,12 +118,8 @@ def dance_for(dancer: StageDancer, kind: str) -> Trajectory:
     return dancer.dance(min(GIF_SECONDS, dancer.seconds) if kind == "gif" else None)
 
 
-def write_dancer(traj: Trajectory, dancer: StageDancer, kind: str, folder: Path) -> Path:
-    """Draw ``traj`` (from `dance_for`) as a GIF or an MP4 with the song; reuse an earlier file."""
-    path = folder / export_name(dancer, kind)
-    if path.is_file():
-        return path
-    folder.mkdir(parents=True, exist_ok=True)
+def write_dancer(traj: Trajectory, dancer: StageDancer, kind: str, path: Path) -> Path:
+    """Draw ``traj`` (from `dance_for`) to ``path`` as a GIF or an MP4 with the song."""
     if kind == "gif":
         return render(traj, path, fps=GIF_FPS, size=GIF_SIZE)
     if kind == "mp4":

@@ -10,17 +10,16 @@ from __future__ import annotations
 
 from typing import Any
 
-from starlette.concurrency import run_in_threadpool
 from starlette.requests import Request
-from starlette.responses import FileResponse, JSONResponse, Response
+from starlette.responses import JSONResponse, Response
 from starlette.routing import BaseRoute, Route
 
 from sinews.evolve import PhaseIn
 from sinews.experiments.evolution import retune_fitness
 from sinews.experiments.gp.run import TASKS
 from sinews.experiments.run_config import EvolutionConfig
-from sinews.render.replays import draw_replays
 from sinews.store.lease import leased
+from sinews.studio.figure_exports import export_routes
 from sinews.studio.figure_runs import (
     CONTROLLERS,
     MAX_GENERATIONS,
@@ -201,22 +200,6 @@ async def timeline(request: Request) -> Response:
     return Response(pack, media_type=MEDIA_TYPE)
 
 
-async def timeline_video(request: Request) -> Response:
-    """POST: the learning timeline as an MP4 (the best of each generation in turn), as
-    ``sinews render RUN --generations …`` draws it; kept in the run's media."""
-    run_id = _id(request, "run")
-    worker = _worker(request)
-    replays = await worker.run(lambda s: s.figure_motion.timeline_replays(run_id))
-    last = replays[-1].individual.generation
-    name = f"sinews-run{run_id}-learning-gen0-{last}.mp4"
-    path = worker.settings.data_dir / "exports" / name
-    if not path.is_file():
-        path.parent.mkdir(parents=True, exist_ok=True)
-        await run_in_threadpool(draw_replays, replays, path)
-        await worker.run(lambda s: s.store.add_media(run_id, path, kind="mp4"))
-    return FileResponse(path, media_type="video/mp4", filename=name)
-
-
 async def breed(request: Request) -> JSONResponse:
     """Breed from picks in the last generation: ``{"picks": [indices]}``; answers the run."""
     run_id, number = _id(request, "run"), _id(request, "generation")
@@ -244,7 +227,7 @@ def figure_routes() -> list[BaseRoute]:
         Route("/api/figures/runs/{run}/pause", pause, methods=["POST"]),
         Route("/api/figures/runs/{run}/fitness", fitness, methods=["POST"]),
         Route("/api/figures/runs/{run}/timeline", timeline),
-        Route("/api/figures/runs/{run}/timeline.mp4", timeline_video, methods=["POST"]),
         Route("/api/figures/runs/{run}/generations/{generation}", generation),
         Route("/api/figures/runs/{run}/generations/{generation}/breed", breed, methods=["POST"]),
+        *export_routes(),
     ]

@@ -7,6 +7,7 @@ import { drawNet, prettyProgram } from "./panel.js";
 import { drawCross, planarDrawer, View } from "./planar.js";
 import { solidDrawer } from "./solid.js";
 import { drawPlot } from "./plot.js";
+import { exportButtons } from "./exports.js";
 
 const $ = (id) => document.getElementById(id);
 const DRAWERS = { planar: planarDrawer, solid: solidDrawer };
@@ -280,6 +281,7 @@ function describe(person, title) {
   const program = $("program");
   program.hidden = !person.program;
   program.textContent = person.program ? prettyProgram(person.program) : "";
+  exportsBar.show(person);
   $("terms").replaceChildren(...[["fitness", person.fitness], ...Object.entries(person.terms)].map(([k, v]) => {
     const span = document.createElement("span");
     span.textContent = `${k} ${v === null ? "–" : v.toPrecision(4)}`;
@@ -530,6 +532,12 @@ $("timeline-mp4").addEventListener("click", () => attempt(async () => {
   say("drawing the learning timeline as a video…");
   say(`saved ${await download(`/api/figures/runs/${figures.run.id}/timeline.mp4`)}`);
 }));
+const exportsBar = exportButtons({
+  run: () => figures.run,
+  staged: () => { const { pack, i } = staged(); return pack ? pack.header.individuals[i] : null; },
+  say,
+  attempt,
+});
 window.addEventListener("resize", () => sizeCanvases());
 
 attempt(start).then(() => {
