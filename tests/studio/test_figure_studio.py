@@ -3,7 +3,6 @@ page, packs of poses, picks, background evolution, and resuming bit for bit afte
 
 from __future__ import annotations
 
-import json
 import signal
 import subprocess
 import time
@@ -16,6 +15,7 @@ from typing import Any
 import numpy as np
 import pytest
 
+from figure_page_helpers import call, ok, sinews, stored
 from killed_runs import sinews_command
 from sinews.store import RunStore
 from studio_helpers import StudioServer, decode_pack
@@ -25,34 +25,6 @@ GP = ["luxo", "--controller", "gp", "--task", "hop", "--population", "10", "--ge
       "--seconds", "1", "--seed", "4"]  # fmt: skip
 
 
-def sinews(db: Path, env: dict[str, str], *args: str) -> subprocess.CompletedProcess[str]:
-    """The installed ``sinews`` on ``db``; fails the test unless it exits 0."""
-    done = subprocess.run([*sinews_command(), *args, "--db", str(db)], env=env,
-                          capture_output=True, text=True, timeout=600)  # fmt: skip
-    assert done.returncode == 0, done.stderr
-    return done
-
-
-def call(server: StudioServer, path: str, body: object = None, **headers: str) -> tuple[int, Any]:
-    """GET (or POST ``body`` as JSON) ``path``; (status, JSON or bytes)."""
-    data = None if body is None else json.dumps(body).encode()
-    if body is not None:
-        headers = {"Content-Type": "application/json", **headers}
-    request = urllib.request.Request(server.url.rstrip("/") + path, data=data, headers=headers)
-    try:
-        with urllib.request.urlopen(request, timeout=300) as answer:
-            raw, status, kind = answer.read(), answer.status, answer.headers["Content-Type"]
-    except urllib.error.HTTPError as error:
-        raw, status, kind = error.read(), error.code, error.headers["Content-Type"]
-    return status, json.loads(raw) if kind == "application/json" else raw
-
-
-def ok(server: StudioServer, path: str, body: object = None) -> Any:
-    status, answer = call(server, path, body)
-    assert status == 200, answer
-    return answer
-
-
 def settled(server: StudioServer, run: int) -> dict[str, Any]:
     """The run once its background job has ended."""
     while True:
@@ -60,17 +32,6 @@ def settled(server: StudioServer, run: int) -> dict[str, Any]:
         if not (shown["job"] and shown["job"]["running"]):
             return shown
         time.sleep(0.2)
-
-
-def stored(db: Path, run: int) -> list[tuple[int, int, Any, float | None, bool]]:
-    """Every individual of a run: generation, index, genome, fitness, picked."""
-    with RunStore(db) as store:
-        return [
-            (p.generation, p.index,
-             p.genome.tolist() if isinstance(p.genome, np.ndarray) else p.genome,
-             p.fitness, p.picked)
-            for p in store.individuals(run)
-        ]  # fmt: skip
 
 
 @pytest.fixture(scope="module")
@@ -162,11 +123,11 @@ def test_requests_are_checked_like_the_dancer_pages(figure_server: StudioServer)
     status, answer = call(figure_server, f"/api/figures/runs/{dancers}")
     assert status == 400 and "this page shows figures" in answer["error"]
     bad_forms = (
-        ({"figure": "luxo3d", "controller": "gp"}, "figure must be one of"),
-        ({"figure": "snake", "controller": "gp"}, "GP has no task for the snake"),
+        ({"figure": "luxo3d", "controller": "springnet"}, "figure must be one of"),
+        ({"figure": "snake", "controller": "gp"}, "figure must be one of luxo, humanoid"),
         ({"figure": "luxo", "controller": "springnet", "population": 26}, "population must"),
         ({"figure": "luxo", "controller": "gp", "task": "fly"}, "no luxo task 'fly'"),
-        ({"figure": "luxo", "controller": "springnet", "target": 2}, "spring nets have no task"),
+        ({"figure": "luxo", "controller": "springnet", "target": 2}, "travel task has no target"),
     )
     for form, message in bad_forms:
         status, answer = call(figure_server, "/api/figures/runs", form)
