@@ -57,7 +57,17 @@ def test_the_page_lists_cli_runs_and_sends_generations_as_pose_packs(
     assert status == 200 and b"figures/main.js" in page
     session = ok(figure_server, "/api/figures/session")
     assert [(r["id"], r["kind"]) for r in session["runs"][:2]] == [(2, "gp"), (1, "springnet")]
-    assert session["tasks"]["luxo"] == ["hop", "limbo"] and "snake" not in session["tasks"]
+    gp, nets = session["tasks"]["gp"], session["tasks"]["springnet"]
+    assert gp["luxo"] == {
+        "hop": {"target": [1.0], "axes": "x"},
+        "limbo": {"target": [1.0], "axes": "x"},
+        "dance": {"song": True},
+    }
+    assert gp["luxo3d"]["hop"] == {"target": [1.0, 0.5], "axes": "xy"}  # the task's default
+    assert gp["humanoid3d"]["touch"]["axes"] == "xyz" and gp["humanoid3d"]["gesture"] == {}
+    assert "snake" not in gp and nets["snake"] == {"travel": {}}
+    assert nets["luxo"] == {"travel": {}, "dance": {"song": True}}
+    assert [s["id"] for s in session["songs"]] == ["demo-groove", "demo-sway"]
 
     header, arrays = decode_pack(ok(figure_server, "/api/figures/runs/1/generations/1"))
     assert header["drawer"] == "planar" and header["figure"] == "luxo" and header["fps"] == 50
