@@ -4,6 +4,7 @@ them bit for bit), and the new-run form starts a dance and a 3D run."""
 
 from __future__ import annotations
 
+import os
 import shutil
 from collections.abc import Iterator
 from pathlib import Path
@@ -18,6 +19,7 @@ from sinews.experiments.kinds import run_kind
 from sinews.store import RunStore
 from studio_helpers import INK, StudioServer
 
+DOCS = Path(__file__).resolve().parents[2] / "docs"
 SONG_SECONDS = 1.5
 """Each dance is the first 1.5 s of a 2 s click song at 120 BPM (beats at 0.25, 0.75, 1.25 s)."""
 DANCE = ["--task", "dance", "--population", "6", "--generations", "1", "--seconds",
@@ -36,12 +38,13 @@ NEXT_FRAME = """() => new Promise((resolve) => requestAnimationFrame(() => resol
 
 @pytest.fixture(scope="module")
 def dance_db(tmp_path_factory: pytest.TempPathFactory, studio_env: dict[str, str]) -> Path:
-    """A GP dance (run 1) and a spring-net dance (run 2) of the lamp to a click song."""
+    """A GP dance (run 1), a spring-net dance (run 2) and one bred by the plain GA, which
+    takes no picks (run 3), of the lamp to a click song."""
     folder = tmp_path_factory.mktemp("figure-dance")
     song = click_song(folder / "clicks.wav")
     db = folder / "studio.db"
-    for controller in ("gp", "springnet"):
-        sinews(db, studio_env, "evolve", "luxo", "--controller", controller, *DANCE, "--song",
+    for more in (["gp"], ["springnet"], ["springnet", "--strategy", "ga"]):
+        sinews(db, studio_env, "evolve", "luxo", "--controller", *more, *DANCE, "--song",
                str(song))  # fmt: skip
     shutil.copy(db, folder / "before-picks.db")
     return db
@@ -91,8 +94,11 @@ def test_a_dance_replays_on_its_songs_audio_clock(
     picture_at(0.8)
     assert page.get_attribute("#beats", "data-lit") == "1"  # the second beat was just heard
     page.screenshot(path=shots / "figure-dance.png")
+    if os.environ.get("SINEWS_FIGURE_DOCS"):
+        shutil.copy(shots / "figure-dance.png", DOCS / "figure-studio-dance.png")
 
 
+@pytest.mark.slow  # four CLI resumes in subprocesses (the page's picks and their twins)
 def test_dance_runs_are_picked_and_bred_and_resumed_bit_for_bit(
     page: Any,
     dance_server: StudioServer,
@@ -135,7 +141,9 @@ def test_dance_runs_are_picked_and_bred_and_resumed_bit_for_bit(
         assert sum(p[4] for p in made) == 2  # the page's picks, stored with generation 0
 
 
-def test_the_form_starts_a_dance_and_a_3d_run(page: Any, dance_server: StudioServer) -> None:
+def test_the_form_starts_a_dance_and_a_3d_run(
+    page: Any, dance_server: StudioServer, shots: Path
+) -> None:
     open_run(page, dance_server, 1)
     page.click("#show-form")
     page.select_option("#form-controller", "gp")
@@ -148,6 +156,8 @@ def test_the_form_starts_a_dance_and_a_3d_run(page: Any, dance_server: StudioSer
     page.select_option("#form-song", "demo-sway")
     for field, value in (("population", "5"), ("generations", "1"), ("seconds", "1")):
         page.fill(f"#form-{field}", value)
+    page.screenshot(path=shots / "figure-dance-form.png", clip={"x": 0, "y": 0, "width": 1600,
+                                                                "height": 420})  # fmt: skip
     page.click("#start-run")
     page.wait_for_function(
         "figures.run && figures.run.song && figures.run.generations === 1"
@@ -182,6 +192,9 @@ def test_the_form_starts_a_dance_and_a_3d_run(page: Any, dance_server: StudioSer
 def test_bad_dance_forms_and_songs_get_one_line(dance_server: StudioServer) -> None:
     status, answer = call(dance_server, "/api/figures/runs/1/audio")
     assert status == 200 and answer[:4] == b"RIFF"  # the run's own song, by the run's id
+    assert ok(dance_server, "/api/figures/runs/3")["maxPicks"] == 0
+    status, answer = call(dance_server, "/api/figures/runs/3/generations/0/breed", {"picks": [0]})
+    assert (status, answer) == (400, {"error": "run 3's strategy (ga) takes no picks"})
     base = {"figure": "luxo", "controller": "gp", "population": 5, "generations": 1}
     for form, message in (
         ({**base, "task": "dance"}, "a dance needs a song"),

@@ -231,6 +231,9 @@ class FigureRuns:
         if generation != last:
             raise FigureRunError(f"run {run_id}: pick in its last generation ({last})")
         most = max_picks(run)
+        if most == 0:
+            raise FigureRunError(f"run {run_id}'s strategy ({run.info.config['strategy']['name']}) "
+                                 "takes no picks")  # fmt: skip
         if not 1 <= len(picks) <= most:
             raise FigureRunError(f"pick 1 to {most} individuals")
         if len(set(picks)) != len(picks) or not all(0 <= p < run.population for p in picks):

@@ -106,11 +106,7 @@ function showRun() {
   else if (evolving) text += job.pausing ? " · pausing after this generation" : " · evolving";
   else if (job && job.error) text += ` · stopped: ${job.error}`;
   $("progress-text").textContent = text;
-  $("pick-rule").textContent = run.kind === "gp"
-    ? `Click up to ${run.maxPicks} programs to pick them: picks are the parents of the next `
-      + "generation's crossovers (the rest by fitness tournaments)."
-    : `Click up to ${run.maxPicks} nets to pick them: picks survive first, the rest by fitness `
-      + "(Alton's hand selection).";
+  $("pick-rule").textContent = pickRule(run);
   const sort = $("sort"), keep = sort.value;
   sort.replaceChildren(new Option("fitness", "fitness"), new Option("index", "index"),
     ...run.terms.map((term) => new Option(term, `term:${term}`)));
@@ -118,6 +114,19 @@ function showRun() {
   drawPlot($("plot"), run.history, run.fitnessLabel, figures.shown);
   showFitness();
   updateBreedBar();
+}
+
+/** How picks breed in this run's strategy. */
+function pickRule(run) {
+  const most = `Click up to ${run.maxPicks} ${run.kind === "gp" ? "programs" : "nets"} to pick them: `;
+  if (run.maxPicks === 0) return `This run's strategy (${run.strategy}) takes no picks: it breeds by fitness alone.`;
+  if (run.strategy === "gp") {
+    return `${most}picks are the parents of the next generation's crossovers (the rest by fitness tournaments).`;
+  }
+  if (run.strategy === "hybrid") {
+    return `${most}picks rank above the rest (the best of them kept, all winning tournaments first), the rest by fitness.`;
+  }
+  return `${most}picks survive first, the rest by fitness (Alton's hand selection).`;
 }
 
 /** The style-weight sliders and phase-in window, rebuilt when the run's spec changes. */
@@ -416,6 +425,7 @@ function formTasks() {
   }
   figures.formShown = shown;
   $("form-target-box").hidden = !takes.target;
+  $("form-floor").hidden = !takes.target;
   for (const axis of "xyz") $(`form-target-${axis}`).hidden = !axes.includes(axis);
   $("form-song-box").hidden = !takes.song;
   drawFloor();
