@@ -158,6 +158,8 @@ def test_the_form_starts_a_dance_and_a_3d_run(
         page.fill(f"#form-{field}", value)
     page.screenshot(path=shots / "figure-dance-form.png", clip={"x": 0, "y": 0, "width": 1600,
                                                                 "height": 420})  # fmt: skip
+    if os.environ.get("SINEWS_FIGURE_DOCS"):
+        shutil.copy(shots / "figure-dance-form.png", DOCS / "figure-studio-dance-form.png")
     page.click("#start-run")
     page.wait_for_function(
         "figures.run && figures.run.song && figures.run.generations === 1"
