@@ -142,7 +142,7 @@ def test_dance_runs_are_picked_and_bred_and_resumed_bit_for_bit(
 
 
 def test_the_form_starts_a_dance_and_a_3d_run(
-    page: Any, dance_server: StudioServer, shots: Path
+    page: Any, dance_server: StudioServer, dance_db: Path, shots: Path
 ) -> None:
     open_run(page, dance_server, 1)
     page.click("#show-form")
@@ -153,7 +153,10 @@ def test_the_form_starts_a_dance_and_a_3d_run(
     expect(page.locator("#form-target-box")).to_be_hidden()
     songs = page.eval_on_selector_all("#form-song option", "(o) => o.map((e) => e.value)")
     assert songs == ["demo-groove", "demo-sway"]
-    page.select_option("#form-song", "demo-sway")
+    page.set_input_files("#form-upload", str(dance_db.parent / "clicks.wav"))  # the dancers' upload
+    expect(page.locator("#form-song option")).to_have_count(3)
+    uploaded = page.input_value("#form-song")
+    assert uploaded.startswith("u") and page.inner_text("#form-song option:checked") == "clicks.wav"
     for field, value in (("population", "5"), ("generations", "1"), ("seconds", "1")):
         page.fill(f"#form-{field}", value)
     page.screenshot(path=shots / "figure-dance-form.png", clip={"x": 0, "y": 0, "width": 1600,
@@ -166,8 +169,8 @@ def test_the_form_starts_a_dance_and_a_3d_run(
         " && !figures.run.job.running && figures.shown === 0"
     )
     run = page.evaluate("figures.run")
-    assert (run["kind"], run["task"], run["song"]["id"]) == ("gp", "luxo-dance", "demo-sway")
-    expect(page.locator("#song-name")).to_have_text("♪ sway (demo)")
+    assert (run["kind"], run["task"], run["song"]["id"]) == ("gp", "luxo-dance", uploaded)
+    expect(page.locator("#song-name")).to_have_text("♪ clicks.wav")
     expect(page.locator(".cell canvas")).to_have_count(5)
 
     page.click("#show-form")
