@@ -203,6 +203,9 @@ def test_bad_dance_forms_and_songs_get_one_line(dance_server: StudioServer) -> N
     base = {"figure": "luxo", "controller": "gp", "population": 5, "generations": 1}
     for form, message in (
         ({**base, "task": "dance"}, "a dance needs a song"),
+        ({**base, "task": ["dance"]}, "no luxo task ['dance']"),
+        ({**base, "figure": ["luxo"]}, "figure must be one of"),
+        ({**base, "task": "dance", "song": ["demo-sway"]}, "song must be the id"),
         ({**base, "task": "dance", "song": "../../etc/passwd"}, "no song '../../etc/passwd'"),
         ({**base, "task": "hop", "song": "demo-sway"}, "the hop task has no song"),
         ({**base, "figure": "luxo3d", "task": "hop", "target": 1}, "target is x, y in metres"),

@@ -148,11 +148,11 @@ def run_form(body: Mapping[str, Any], songs: FigureSongs) -> tuple[RunKind, str,
     if controller not in CONTROLLERS:
         raise FigureRunError(f"controller must be one of {', '.join(CONTROLLERS)}")
     choices = form_tasks()[controller]
-    if figure not in choices:
+    if not isinstance(figure, str) or figure not in choices:
         raise FigureRunError(f"figure must be one of {', '.join(choices)} ({controller})")
     tasks = choices[figure]
     short = body.get("task") or next(iter(tasks))
-    if short not in tasks:
+    if not isinstance(short, str) or short not in tasks:
         raise FigureRunError(f"no {figure} task {short!r}; choose from {', '.join(tasks)}")
     takes = tasks[short]
     options: dict[str, Any] = {
