@@ -349,8 +349,8 @@ function currentFrame() {
   const drawer = figures.drawer;
   if (!drawer) return 0;
   const clock = figures.clock;
-  let seconds = figures.playing ? clock.at + (performance.now() - clock.start) / 1000 : clock.at;
-  if (figures.song.song) seconds = figures.song.time();
+  const seconds = figures.song.song ? figures.song.time() // a dance: the song being heard
+    : figures.playing ? clock.at + (performance.now() - clock.start) / 1000 : clock.at;
   return Math.floor(seconds * drawer.fps + 1e-6) % drawer.frames;
 }
 
