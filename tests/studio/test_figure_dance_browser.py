@@ -15,6 +15,7 @@ from playwright.sync_api import expect
 
 from dance_helpers import click_song
 from figure_page_helpers import call, ok, sinews, stored
+from sinews.cli import main
 from sinews.experiments.kinds import run_kind
 from sinews.store import RunStore
 from studio_helpers import INK, StudioServer
@@ -37,15 +38,15 @@ NEXT_FRAME = """() => new Promise((resolve) => requestAnimationFrame(() => resol
 
 
 @pytest.fixture(scope="module")
-def dance_db(tmp_path_factory: pytest.TempPathFactory, studio_env: dict[str, str]) -> Path:
+def dance_db(tmp_path_factory: pytest.TempPathFactory, studio_home: None) -> Path:
     """A GP dance (run 1), a spring-net dance (run 2) and one bred by the plain GA, which
-    takes no picks (run 3), of the lamp to a click song."""
+    takes no picks (run 3), of the lamp to a click song (made by the CLI, in process)."""
     folder = tmp_path_factory.mktemp("figure-dance")
     song = click_song(folder / "clicks.wav")
     db = folder / "studio.db"
     for more in (["gp"], ["springnet"], ["springnet", "--strategy", "ga"]):
-        sinews(db, studio_env, "evolve", "luxo", "--controller", *more, *DANCE, "--song",
-               str(song))  # fmt: skip
+        assert main(["evolve", "luxo", "--controller", *more, *DANCE, "--song", str(song),
+                     "--db", str(db)]) == 0  # fmt: skip
     shutil.copy(db, folder / "before-picks.db")
     return db
 
