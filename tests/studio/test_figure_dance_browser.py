@@ -198,7 +198,8 @@ def test_the_form_starts_a_dance_and_a_3d_run(
 def test_bad_dance_forms_and_songs_get_one_line(dance_server: StudioServer) -> None:
     status, answer = call(dance_server, "/api/figures/runs/1/audio")
     assert status == 200 and answer[:4] == b"RIFF"  # the run's own song, by the run's id
-    assert ok(dance_server, "/api/figures/runs/3")["maxPicks"] == 0
+    shown = ok(dance_server, "/api/figures/runs/3")
+    assert shown["maxPicks"] == 0 and shown["fitnessLabel"] == "fitness (beat lift + style)"
     status, answer = call(dance_server, "/api/figures/runs/3/generations/0/breed", {"picks": [0]})
     assert (status, answer) == (400, {"error": "run 3's strategy (ga) takes no picks"})
     base = {"figure": "luxo", "controller": "gp", "population": 5, "generations": 1}
