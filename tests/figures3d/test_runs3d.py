@@ -95,6 +95,14 @@ def test_bad_3d_targets_are_one_line(
     assert message in err and "\n" not in err
 
 
+def test_spring_nets_of_3d_figures_are_refused_in_one_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert main(["evolve", "luxo3d", "--population", "5", "--db", str(tmp_path / "x.db")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "spring nets drive the snake, luxo, humanoid" in err and "\n" not in err
+
+
 def test_render_draws_a_3d_run_with_mujoco(whole: Path, tmp_path: Path) -> None:
     from sinews.render.mujoco_view import GLBackendError, _context_class, gl_backend
 

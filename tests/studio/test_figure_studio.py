@@ -43,7 +43,17 @@ def test_the_page_lists_cli_runs_and_sends_generations_as_pose_packs(
     assert status == 200 and b"figures/main.js" in page
     session = ok(figure_server, "/api/figures/session")
     assert [(r["id"], r["kind"]) for r in session["runs"][:2]] == [(2, "gp"), (1, "springnet")]
-    assert session["tasks"]["luxo"] == ["hop", "limbo"] and "snake" not in session["tasks"]
+    gp, nets = session["tasks"]["gp"], session["tasks"]["springnet"]
+    assert gp["luxo"] == {
+        "hop": {"target": [1.0], "axes": "x"},
+        "limbo": {"target": [1.0], "axes": "x"},
+        "dance": {"song": True},
+    }
+    assert gp["luxo3d"]["hop"] == {"target": [1.0, 0.5], "axes": "xy"}  # the task's default
+    assert gp["humanoid3d"]["touch"]["axes"] == "xyz" and gp["humanoid3d"]["gesture"] == {}
+    assert "snake" not in gp and nets["snake"] == {"travel": {}}
+    assert nets["luxo"] == {"travel": {}, "dance": {"song": True}}
+    assert [s["id"] for s in session["songs"]] == ["demo-groove", "demo-sway"]
 
     header, arrays = decode_pack(ok(figure_server, "/api/figures/runs/1/generations/1"))
     assert header["drawer"] == "planar" and header["figure"] == "luxo" and header["fps"] == 50
@@ -109,11 +119,11 @@ def test_requests_are_checked_like_the_dancer_pages(figure_server: StudioServer)
     status, answer = call(figure_server, f"/api/figures/runs/{dancers}")
     assert status == 400 and "this page shows figures" in answer["error"]
     bad_forms = (
-        ({"figure": "luxo3d", "controller": "gp"}, "figure must be one of"),
-        ({"figure": "snake", "controller": "gp"}, "GP has no task for the snake"),
+        ({"figure": "luxo3d", "controller": "springnet"}, "figure must be one of"),
+        ({"figure": "snake", "controller": "gp"}, "figure must be one of luxo, humanoid"),
         ({"figure": "luxo", "controller": "springnet", "population": 26}, "population must"),
         ({"figure": "luxo", "controller": "gp", "task": "fly"}, "no luxo task 'fly'"),
-        ({"figure": "luxo", "controller": "springnet", "target": 2}, "spring nets have no task"),
+        ({"figure": "luxo", "controller": "springnet", "target": 2}, "travel task has no target"),
     )
     for form, message in bad_forms:
         status, answer = call(figure_server, "/api/figures/runs", form)

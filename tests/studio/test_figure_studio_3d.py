@@ -58,19 +58,15 @@ def test_a_3d_generation_is_sent_as_shapes_posed_in_3d(server: StudioServer) -> 
 
 
 @pytest.fixture(scope="module")
-def webgl_page(shots: Path) -> Iterator[Any]:
-    if not CHROMIUM.exists():
-        pytest.skip(f"browser tests need Chromium at {CHROMIUM} (apt-get install chromium)")
-    from playwright.sync_api import sync_playwright
-
-    with sync_playwright() as playwright:
-        browser = playwright.chromium.launch(executable_path=str(CHROMIUM), args=WEBGL_ARGS)
-        page = browser.new_page(viewport={"width": 1600, "height": 1000})
-        errors: list[str] = []
-        page.on("pageerror", lambda error: errors.append(str(error)))
-        yield page
-        browser.close()
-        assert not errors, f"JavaScript errors: {errors}"
+def webgl_page(playwright: Any, shots: Path) -> Iterator[Any]:
+    """A page of a Chromium with WebGL (the session's Playwright: it starts only once)."""
+    browser = playwright.chromium.launch(executable_path=str(CHROMIUM), args=WEBGL_ARGS)
+    page = browser.new_page(viewport={"width": 1600, "height": 1000})
+    errors: list[str] = []
+    page.on("pageerror", lambda error: errors.append(str(error)))
+    yield page
+    browser.close()
+    assert not errors, f"JavaScript errors: {errors}"
 
 
 def test_the_page_draws_3d_lamps_and_the_stage_orbits(

@@ -28,6 +28,7 @@ from starlette.types import ASGIApp, Receive, Scope, Send
 from sinews.errors import SinewsError
 from sinews.studio.api import routes
 from sinews.studio.figure_api import figure_routes
+from sinews.studio.figure_songs import figure_song_routes
 from sinews.studio.scene_socket import scene_routes
 from sinews.studio.service import Worker
 from sinews.studio.validate import RequestError
@@ -140,6 +141,7 @@ def create_app(
             Route("/figures", _figures_page),
             *routes,
             *figure_routes(),
+            *figure_song_routes(),
             *scene_routes(),
             Mount("/static", StaticFiles(directory=STATIC), name="static"),
         ],

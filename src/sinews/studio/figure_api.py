@@ -16,7 +16,6 @@ from starlette.routing import BaseRoute, Route
 
 from sinews.evolve import PhaseIn
 from sinews.experiments.evolution import retune_fitness
-from sinews.experiments.gp.run import TASKS
 from sinews.experiments.run_config import EvolutionConfig
 from sinews.store.lease import leased
 from sinews.studio.figure_exports import export_routes
@@ -24,12 +23,14 @@ from sinews.studio.figure_runs import (
     CONTROLLERS,
     MAX_GENERATIONS,
     MAX_SHOWN,
-    PLANAR,
     POPULATIONS,
+    SHOWN,
     FigureRun,
     FigureRunError,
+    form_tasks,
     max_picks,
 )
+from sinews.studio.figure_songs import DANCE_LABEL
 from sinews.studio.pack import MEDIA_TYPE
 from sinews.studio.service import Studio, Worker
 from sinews.studio.validate import RequestError, body_fields, number, parse_whole, whole
@@ -39,7 +40,8 @@ __all__ = ["figure_routes"]
 _ID = 2**62
 MAX_WEIGHT = 1000.0
 """Largest style weight the sliders may set."""
-_FORM = ("figure", "controller", "task", "target", "population", "generations", "seconds", "seed")
+_FORM = ("figure", "controller", "task", "target", "song", "population", "generations", "seconds",
+         "seed")  # fmt: skip
 
 
 def _worker(request: Request) -> Worker:
@@ -70,9 +72,10 @@ def _run_json(studio: Studio, run: FigureRun) -> dict[str, Any]:
         "terms": list(config.fitness.names),
         "fitness": config.fitness.to_dict(),
         "fitnessHistory": info.config.get("fitness_history", []),
-        "fitnessLabel": run.kind.fitness_label,
+        "fitnessLabel": run.kind.fitness_label if info.song_hash is None else DANCE_LABEL,
         "maxPicks": max_picks(run),
         "history": studio.figure_runs.history(run.id),
+        "song": studio.figure_songs.to_json(info),
     }
 
 
@@ -87,14 +90,10 @@ async def session(request: Request) -> JSONResponse:
 
     def get(studio: Studio) -> dict[str, Any]:
         return {
-            "figures": list(PLANAR),
+            "figures": list(SHOWN),
             "controllers": list(CONTROLLERS),
-            # a dance needs a song and the page has no song chooser yet: start it with the CLI
-            "tasks": {
-                figure: [task for task in TASKS[figure] if task != "dance"]
-                for figure in PLANAR
-                if figure in TASKS
-            },
+            "tasks": form_tasks(),
+            "songs": [{"id": song.id, "name": song.name} for song in studio.songs.songs()],
             "populations": [POPULATIONS.start, POPULATIONS.stop - 1],
             "maxGenerations": MAX_GENERATIONS,
             "runs": [_run_list_json(r) for r in studio.figure_runs.all()],
@@ -116,7 +115,7 @@ async def new_run(request: Request) -> JSONResponse:
     body = await body_fields(request, ["figure", "controller"], _FORM)
 
     def start(studio: Studio) -> dict[str, Any]:
-        run_id = studio.figure_runs.create(body)
+        run_id = studio.figure_runs.create(body, studio.figure_songs)
         run = studio.figure_runs.get(run_id)
         studio.figure_jobs.start(run_id, 0, int(run.info.config["generations"]))
         return _run_json(studio, studio.figure_runs.get(run_id))

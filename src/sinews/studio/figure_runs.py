@@ -14,6 +14,7 @@ process holds no lease, and the page may evolve it on.
 
 from __future__ import annotations
 
+import inspect
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -22,9 +23,13 @@ import numpy as np
 
 from sinews.errors import SinewsError
 from sinews.evolve import SerialEvaluator
-from sinews.experiments.gp.run import TASKS
+from sinews.evolve.registry import STRATEGIES
+from sinews.experiments.gp.run import TARGET_AXES, TASKS
 from sinews.experiments.kinds import RunKind, kind_of, run_kind
+from sinews.experiments.springnet.dance import DANCE_FIGURES
+from sinews.figures.tasks import TASKS as TASK_FACTORIES
 from sinews.store import RunInfo, RunStore
+from sinews.studio.figure_songs import FigureSongs
 
 __all__ = [
     "CONTROLLERS",
@@ -32,16 +37,19 @@ __all__ = [
     "PLANAR",
     "POPULATIONS",
     "SHOWN",
+    "TRAVEL",
     "FigureRun",
     "FigureRuns",
+    "form_tasks",
     "max_picks",
     "run_form",
 ]
 
 PLANAR = ("luxo", "snake", "humanoid")
-"""The figures the page's form starts runs of."""
+"""The planar figures (spring nets drive these)."""
 SHOWN = (*PLANAR, "luxo3d", "humanoid3d")
-"""The figures whose runs the page opens (3D runs are started with ``sinews evolve``)."""
+"""The figures whose runs the page opens (and starts, with the controllers that drive
+them: spring nets the planar ones, GP those with tasks, `form_tasks`)."""
 CONTROLLERS = ("springnet", "gp")
 """The run kinds the page opens."""
 POPULATIONS = range(5, 26)
@@ -83,31 +91,70 @@ class FigureRun:
 
 
 def max_picks(run: FigureRun) -> int:
-    """The most picks one generation takes: n/5 for Alton's GA, otherwise half the population."""
+    """The most picks one generation takes: n/5 for Alton's GA, none for a strategy that
+    takes no picks (the float GA), otherwise half the population."""
     strategy = run.info.config.get("strategy") or {}
+    if "picks" not in STRATEGIES[strategy.get("name", "ga")].takes:
+        return 0
     if strategy.get("name") == "alton":
         return run.population // 5
     return max(1, run.population // 2)
 
 
-def run_form(body: Mapping[str, Any]) -> tuple[RunKind, str, dict[str, Any]]:
+TRAVEL = "travel"
+"""The spring nets' own task in the form: as far as they can (the kind's no ``task``)."""
+
+
+def form_tasks() -> dict[str, dict[str, dict[str, dict[str, Any]]]]:
+    """The new-run form's choices: controller → figure → task → what the task takes:
+    ``target`` (its default, m, one number per axis) with its ``axes`` (``"x"``, ``"xz"``,
+    ``"xy"`` or ``"xyz"``), or ``song`` (a dance)."""
+    nets: dict[str, dict[str, dict[str, Any]]] = {figure: {TRAVEL: {}} for figure in PLANAR}
+    for figure in DANCE_FIGURES:
+        nets[figure]["dance"] = {"song": True}
+    gp = {
+        figure: {short: _takes(short, name, preset) for short, (name, preset) in tasks.items()}
+        for figure, tasks in TASKS.items()
+    }
+    return {"springnet": nets, "gp": gp}
+
+
+def _takes(short: str, name: str, preset: Mapping[str, Any]) -> dict[str, Any]:
+    if short == "dance":
+        return {"song": True}
+    parameter = inspect.signature(TASK_FACTORIES[name]).parameters.get("target")
+    if parameter is None or "target" in preset:
+        return {}
+    default = parameter.default
+    values = [default] if isinstance(default, int | float) else list(default)
+    return {"target": values, "axes": TARGET_AXES.get(name, "X").replace(",", "").lower()}
+
+
+def run_form(body: Mapping[str, Any], songs: FigureSongs) -> tuple[RunKind, str, dict[str, Any]]:
     """The kind, figure and ``create_run`` options of the page's new-run form.
 
     Args:
-        body: ``figure``, ``controller``, and optionally ``task``, ``target``
-            (metres: a number, or [x, z] for the humanoid), ``population``,
-            ``generations``, ``seconds``, ``seed``.
+        body: ``figure``, ``controller``, and optionally ``task`` (one of `form_tasks`),
+            ``target`` (metres: a number, or a list of one per axis), ``song`` (a dance:
+            the id of a song of the studio's library), ``population``, ``generations``,
+            ``seconds``, ``seed``.
+        songs: the studio's songs.
 
     Raises:
-        FigureRunError: a figure or controller the page does not offer, a number out of range.
+        FigureRunError: a figure, controller or task the page does not offer, a target or
+            song the task does not take, a number out of range.
     """
     figure, controller = body.get("figure"), body.get("controller")
-    if figure not in PLANAR:
-        raise FigureRunError(f"figure must be one of {', '.join(PLANAR)}")
     if controller not in CONTROLLERS:
         raise FigureRunError(f"controller must be one of {', '.join(CONTROLLERS)}")
-    if controller == "gp" and figure not in TASKS:
-        raise FigureRunError(f"GP has no task for the {figure}")
+    choices = form_tasks()[controller]
+    if not isinstance(figure, str) or figure not in choices:
+        raise FigureRunError(f"figure must be one of {', '.join(choices)} ({controller})")
+    tasks = choices[figure]
+    short = body.get("task") or next(iter(tasks))
+    if not isinstance(short, str) or short not in tasks:
+        raise FigureRunError(f"no {figure} task {short!r}; choose from {', '.join(tasks)}")
+    takes = tasks[short]
     options: dict[str, Any] = {
         "population": _whole(body.get("population", 20), "population", POPULATIONS),
         "generations": _whole(body.get("generations", 1), "generations", GENERATIONS),
@@ -115,16 +162,22 @@ def run_form(body: Mapping[str, Any]) -> tuple[RunKind, str, dict[str, Any]]:
     }
     if body.get("seconds") is not None:
         options["seconds"] = _number(body["seconds"], "seconds", 0.1, MAX_SECONDS)
-    if controller == "gp":
-        options["task"] = body.get("task")
-        target = body.get("target")
-        if target is not None:
-            values = target if isinstance(target, list) else [target]
-            if not 1 <= len(values) <= 2:
-                raise FigureRunError("target must be x, or [x, z], in metres")
-            options["target"] = ",".join(repr(_number(v, "target", -10.0, 10.0)) for v in values)
-    elif body.get("task") is not None or body.get("target") is not None:
-        raise FigureRunError("spring nets have no task or target: they travel as far as they can")
+    if short != TRAVEL:
+        options["task"] = short
+    target = body.get("target")
+    if target is not None:
+        if "target" not in takes:
+            raise FigureRunError(f"the {short} task has no target")
+        values = target if isinstance(target, list) else [target]
+        if len(values) != len(takes["target"]):
+            raise FigureRunError(f"the {short} target is {', '.join(takes['axes'])} in metres")
+        options["target"] = ",".join(repr(_number(v, "target", -10.0, 10.0)) for v in values)
+    if takes.get("song"):
+        if body.get("song") is None:
+            raise FigureRunError("a dance needs a song: choose one of the studio's songs")
+        options["song"] = songs.setting(body["song"])
+    elif body.get("song") is not None:
+        raise FigureRunError(f"the {short} task has no song (only a dance has)")
     return run_kind(controller), figure, options
 
 
@@ -162,9 +215,9 @@ class FigureRuns:
                 continue
         return found
 
-    def create(self, body: Mapping[str, Any]) -> int:
+    def create(self, body: Mapping[str, Any], songs: FigureSongs) -> int:
         """Record a new run from the page's form (no generation yet); return its id."""
-        kind, figure, options = run_form(body)
+        kind, figure, options = run_form(body, songs)
         return kind.create_run(self.store, subject=figure, file_values={}, options=options)
 
     def pick(self, run_id: int, generation: int, picks: list[int]) -> int:
@@ -178,6 +231,9 @@ class FigureRuns:
         if generation != last:
             raise FigureRunError(f"run {run_id}: pick in its last generation ({last})")
         most = max_picks(run)
+        if most == 0:
+            raise FigureRunError(f"run {run_id}'s strategy ({run.info.config['strategy']['name']}) "
+                                 "takes no picks")  # fmt: skip
         if not 1 <= len(picks) <= most:
             raise FigureRunError(f"pick 1 to {most} individuals")
         if len(set(picks)) != len(picks) or not all(0 <= p < run.population for p in picks):

@@ -21,6 +21,7 @@ from sinews.store import RunStore
 from sinews.studio.figure_jobs import FigureJobs
 from sinews.studio.figure_motion import FigureMotion
 from sinews.studio.figure_runs import FigureRuns
+from sinews.studio.figure_songs import FigureSongs
 from sinews.studio.motion import Motion
 from sinews.studio.runs import StudioRuns
 from sinews.studio.songs import SongLibrary
@@ -69,6 +70,7 @@ class Studio:
         self.figure_runs = FigureRuns(self.store)
         self.figure_motion = FigureMotion(self.figure_runs)
         self.figure_jobs = FigureJobs(settings.db)
+        self.figure_songs = FigureSongs(self.songs)
         self.exports = settings.data_dir / "exports"
         self.first_run = -1
 

@@ -51,6 +51,7 @@ __all__ = [
     "CONTROLLER",
     "DEFAULTS",
     "KIND",
+    "TARGET_AXES",
     "TASKS",
     "GPKind",
     "adequate",
@@ -342,7 +343,7 @@ def _number(value: object, name: str) -> float:
     return float(value)
 
 
-_TARGET_AXES = {"humanoid-reach": "X,Z", "luxo3d-hop": "X,Y", "luxo3d-limbo": "X,Y",
+TARGET_AXES = {"humanoid-reach": "X,Z", "luxo3d-hop": "X,Y", "luxo3d-limbo": "X,Y",
                 "humanoid3d-point": "X,Y,Z", "humanoid3d-touch": "X,Y,Z"}  # fmt: skip
 """Tasks whose ``--target`` is a point, and its axes (the others take a distance)."""
 
@@ -352,7 +353,7 @@ def _target(value: object, task: str) -> float | tuple[float, ...]:
     ``"1.0,0.5"`` for the 3D lamp's (x, y), ``"0.5,-0.2,1.2"`` for a 3D humanoid's point."""
     if task in ("humanoid3d-gesture", "humanoid3d-nose"):
         raise SinewsError(f"the {task} task has no --target")
-    axes = _TARGET_AXES.get(task)
+    axes = TARGET_AXES.get(task)
     if axes is not None:
         return _numbers(value, task, axes)
     items: Any = value.split(",") if isinstance(value, str) else value

@@ -274,12 +274,13 @@ def dance_defaults(
     figure: str, given: Mapping[str, Any]
 ) -> tuple[dict[str, Any], dict[str, float]]:
     """A dancing net run's defaults and term weights: the dance's terms phased in as in
-    GP runs, 250 nets, the float GA (Alton's knows only the net's genes)."""
+    GP runs, 250 nets, the float GA that takes picks (``hybrid``: Alton's GA knows only the
+    net's genes; without picks the hybrid breeds exactly as the plain ``ga``)."""
     if figure not in DANCE_FIGURES:
         raise SinewsError(f"spring nets dance only the {', '.join(DANCE_FIGURES)}")
     weights = dict(make_task(DANCE_FIGURES[figure]).weights)
     generations = int(given.get("generations") or DEFAULTS["generations"])
-    defaults = {**DEFAULTS, "population": 250, "strategy": "ga", "fitness": list(weights),
+    defaults = {**DEFAULTS, "population": 250, "strategy": "hybrid", "fitness": list(weights),
                 "phase_in": default_phase_in(generations)}  # fmt: skip
     return defaults, weights
 

@@ -70,6 +70,9 @@ class SpringNetSettings:
         figure = values.get("figure")
         if figure not in FIGURES:
             raise SinewsError(f"no figure called {figure!r}; choose from {', '.join(FIGURES)}")
+        if figure not in PHYSICS_HZ:
+            raise SinewsError(f"spring nets drive the {', '.join(PHYSICS_HZ)}; evolve the "
+                              f"{figure} with --controller gp")  # fmt: skip
         masses = values.get("masses") or max(4, make_figure(figure).n_actuators)
         settings = cls(
             figure=figure,

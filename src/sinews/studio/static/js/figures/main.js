@@ -2,7 +2,8 @@
 // hand and bred, or evolved in the background while a plot follows the fitness.
 // State lives on `window.figures` (the browser tests read it).
 
-import { download, getJSON, getPack, postJSON } from "../api.js";
+import { download, getJSON, getPack, postFile, postJSON } from "../api.js";
+import { RunSong } from "./audio.js";
 import { drawNet, prettyProgram } from "./panel.js";
 import { drawCross, planarDrawer, View } from "./planar.js";
 import { solidDrawer } from "./solid.js";
@@ -30,6 +31,7 @@ const figures = {
   views: [],
   stageView: null,
   follow: true, // jump to each new generation as it arrives
+  song: new RunSong($("beats")), // a dance's song: then the replays follow its audio clock
 };
 window.figures = figures;
 
@@ -68,11 +70,20 @@ async function openRun(id) {
   figures.follow = true;
   history.replaceState(null, "", `/figures?run=${id}`);
   $("runs").value = String(id);
+  await openSong();
   showRun();
   const last = figures.run.generations - 1;
   if (last >= 0) await showGeneration(last);
   else clearGrid();
   document.body.classList.remove("starting");
+}
+
+/** A dance plays with its song, the replays on its audio clock (paused until Play is pressed:
+ * a browser plays sound only after a click). */
+async function openSong() {
+  const dancing = await figures.song.open(figures.run);
+  $("song-name").textContent = dancing ? `♪ ${figures.run.song.name}` : "";
+  setPlaying(dancing ? false : figures.playing);
 }
 
 function showRun() {
@@ -96,11 +107,7 @@ function showRun() {
   else if (evolving) text += job.pausing ? " · pausing after this generation" : " · evolving";
   else if (job && job.error) text += ` · stopped: ${job.error}`;
   $("progress-text").textContent = text;
-  $("pick-rule").textContent = run.kind === "gp"
-    ? `Click up to ${run.maxPicks} programs to pick them: picks are the parents of the next `
-      + "generation's crossovers (the rest by fitness tournaments)."
-    : `Click up to ${run.maxPicks} nets to pick them: picks survive first, the rest by fitness `
-      + "(Alton's hand selection).";
+  $("pick-rule").textContent = pickRule(run);
   const sort = $("sort"), keep = sort.value;
   sort.replaceChildren(new Option("fitness", "fitness"), new Option("index", "index"),
     ...run.terms.map((term) => new Option(term, `term:${term}`)));
@@ -108,6 +115,19 @@ function showRun() {
   drawPlot($("plot"), run.history, run.fitnessLabel, figures.shown);
   showFitness();
   updateBreedBar();
+}
+
+/** How picks breed in this run's strategy. */
+function pickRule(run) {
+  const most = `Click up to ${run.maxPicks} ${run.kind === "gp" ? "programs" : "nets"} to pick them: `;
+  if (run.maxPicks === 0) return `This run's strategy (${run.strategy}) takes no picks: it breeds by fitness alone.`;
+  if (run.strategy === "gp") {
+    return `${most}picks are the parents of the next generation's crossovers (the rest by fitness tournaments).`;
+  }
+  if (run.strategy === "hybrid") {
+    return `${most}picks rank above the rest (the best of them kept, all winning tournaments first), the rest by fitness.`;
+  }
+  return `${most}picks survive first, the rest by fitness (Alton's hand selection).`;
 }
 
 /** The style-weight sliders and phase-in window, rebuilt when the run's spec changes. */
@@ -331,8 +351,9 @@ function currentFrame() {
   const drawer = figures.drawer;
   if (!drawer) return 0;
   const clock = figures.clock;
-  const seconds = figures.playing ? clock.at + (performance.now() - clock.start) / 1000 : clock.at;
-  return Math.floor(seconds * drawer.fps) % drawer.frames;
+  const seconds = figures.song.song ? figures.song.time() // a dance: the song being heard
+    : figures.playing ? clock.at + (performance.now() - clock.start) / 1000 : clock.at;
+  return Math.floor(seconds * drawer.fps + 1e-6) % drawer.frames;
 }
 
 function drawAll() {
@@ -359,6 +380,7 @@ function drawAll() {
   }
   $("seek").value = String(t);
   $("time").textContent = `${(t / drawer.fps).toFixed(1)} s`;
+  figures.song.draw();
 }
 
 function tick() {
@@ -371,6 +393,7 @@ function setPlaying(playing) {
   clock.at = figures.drawer ? currentFrame() / figures.drawer.fps : 0;
   clock.start = performance.now();
   figures.playing = playing;
+  if (figures.song.song) (playing ? figures.song.play() : figures.song.pause()).then(drawAll);
   $("play").textContent = playing ? "❚❚ Pause" : "▶ Play";
   $("play").setAttribute("aria-pressed", String(playing));
   drawAll();
@@ -378,14 +401,41 @@ function setPlaying(playing) {
 
 // -- the new-run form ---------------------------------------------------------------------
 
+/** The form's choices for its controller, figure and task (`form_tasks` on the server). */
+function formTask() {
+  const byFigure = figures.session.tasks[$("form-controller").value];
+  const tasks = byFigure[$("form-figure").value] || {};
+  return tasks[$("form-task").value] || {};
+}
+
+function fill(select, values) {
+  const keep = select.value;
+  select.replaceChildren(...values.map((v) => new Option(v, v)));
+  if (values.includes(keep)) select.value = keep;
+}
+
 function formTasks() {
-  const figure = $("form-figure").value, gp = $("form-controller").value === "gp";
-  const tasks = figures.session.tasks[figure] || [];
-  $("form-task").replaceChildren(...tasks.map((t) => new Option(t, t)));
-  $("form-task-box").hidden = !gp;
-  $("form-target-box").hidden = !gp || !["hop", "limbo", "reach"].includes($("form-task").value);
-  $("form-target-z").hidden = figure !== "humanoid";
+  const byFigure = figures.session.tasks[$("form-controller").value];
+  fill($("form-figure"), Object.keys(byFigure));
+  const tasks = byFigure[$("form-figure").value];
+  fill($("form-task"), Object.keys(tasks));
+  $("form-task-box").hidden = Object.keys(tasks).length < 2;
+  const takes = formTask(), axes = takes.axes || "";
+  const shown = `${$("form-figure").value} ${$("form-task").value}`;
+  if (takes.target && figures.formShown !== shown) { // a new task: its own default target
+    [...axes].forEach((axis, k) => { $(`form-target-${axis}`).value = String(takes.target[k]); });
+  }
+  figures.formShown = shown;
+  $("form-target-box").hidden = !takes.target;
+  $("form-floor").hidden = !takes.target;
+  for (const axis of "xyz") $(`form-target-${axis}`).hidden = !axes.includes(axis);
+  $("form-song-box").hidden = !takes.song;
   drawFloor();
+}
+
+function formSongs(selected) {
+  $("form-song").replaceChildren(...figures.session.songs.map((song) => new Option(song.name, song.id)));
+  if (selected) $("form-song").value = selected;
 }
 
 /** The form's floor: 5 m from just behind the start, the ground 30 px above the bottom. */
@@ -404,7 +454,7 @@ function drawFloor() {
   ctx.fillStyle = "rgb(46,139,87)"; ctx.fillRect(v.x(0) - 1, v.y(0) - 14, 2, 14);
   if ($("form-target-box").hidden) return;
   const x = Number($("form-target-x").value);
-  if ($("form-figure").value === "humanoid") {
+  if ((formTask().axes || "").includes("z")) {
     const z = Number($("form-target-z").value);
     ctx.strokeStyle = "rgb(200,40,40)"; ctx.lineWidth = 2;
     ctx.beginPath(); ctx.arc(v.x(x), v.y(z), 6, 0, 2 * Math.PI); ctx.stroke();
@@ -419,7 +469,7 @@ function floorClick(event) {
   const [x, z] = v.world(((event.clientX - box.left) * canvas.width) / box.width,
     ((event.clientY - box.top) * canvas.height) / box.height);
   $("form-target-x").value = x.toFixed(2);
-  if ($("form-figure").value === "humanoid") $("form-target-z").value = Math.max(0, z).toFixed(2);
+  if ((formTask().axes || "").includes("z")) $("form-target-z").value = Math.max(0, z).toFixed(2);
   drawFloor();
 }
 
@@ -432,14 +482,11 @@ function formBody() {
     generations: number("form-generations"),
     seconds: number("form-seconds"),
     seed: number("form-seed"),
+    task: $("form-task").value,
   };
-  if (body.controller === "gp") {
-    body.task = $("form-task").value;
-    if (!$("form-target-box").hidden) {
-      body.target = body.figure === "humanoid"
-        ? [number("form-target-x"), number("form-target-z")] : number("form-target-x");
-    }
-  }
+  const takes = formTask(), axes = takes.axes || "";
+  if (takes.target) body.target = axes.length === 1 ? number("form-target-x") : [...axes].map((a) => number(`form-target-${a}`));
+  if (takes.song) body.song = $("form-song").value;
   return body;
 }
 
@@ -448,8 +495,8 @@ function formBody() {
 async function start() {
   await refreshRunList();
   const session = figures.session;
-  $("form-figure").replaceChildren(...session.figures.map((f) => new Option(f, f)));
   $("form-controller").replaceChildren(...session.controllers.map((c) => new Option(c, c)));
+  formSongs();
   formTasks();
   const asked = Number(new URLSearchParams(location.search).get("run"));
   const first = session.runs.some((r) => r.id === asked) ? asked : session.runs[0]?.id;
@@ -469,6 +516,7 @@ $("play").addEventListener("click", () => setPlaying(!figures.playing));
 $("seek").addEventListener("input", () => {
   figures.clock.at = Number($("seek").value) / (figures.drawer ? figures.drawer.fps : 1);
   figures.clock.start = performance.now();
+  if (figures.song.song) figures.song.seek(figures.clock.at);
   drawAll();
 });
 $("clear-picks").addEventListener("click", () => { figures.picks.clear(); togglePick(-1); });
@@ -498,6 +546,16 @@ $("show-form").addEventListener("click", () => { $("new-run").hidden = false; dr
 $("hide-form").addEventListener("click", () => { $("new-run").hidden = true; });
 for (const id of ["form-figure", "form-controller", "form-task"]) $(id).addEventListener("change", formTasks);
 for (const id of ["form-target-x", "form-target-z"]) $(id).addEventListener("input", drawFloor);
+$("form-upload").addEventListener("change", () => attempt(async () => { // the dancer page's upload
+  const file = $("form-upload").files[0];
+  $("form-upload").value = "";
+  if (!file) return;
+  say(`analysing ${file.name}…`);
+  const song = await postFile("/api/songs", file);
+  await refreshRunList(figures.run?.id);
+  formSongs(song.id);
+  say(`${song.name}: ${song.tempo.toFixed(1)} BPM, ${song.duration.toFixed(1)} s`);
+}));
 $("form-floor").addEventListener("click", floorClick);
 $("new-run").addEventListener("submit", (event) => {
   event.preventDefault();
@@ -511,6 +569,7 @@ $("new-run").addEventListener("submit", (event) => {
     figures.run = run;
     figures.follow = true;
     history.replaceState(null, "", `/figures?run=${run.id}`);
+    await openSong();
     showRun();
   });
 });
