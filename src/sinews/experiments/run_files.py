@@ -19,9 +19,12 @@ from sinews.errors import SinewsError
 from sinews.experiments.evolution import full_weight_bests
 from sinews.experiments.kinds import kind_of
 from sinews.experiments.run_config import EvolutionConfig
-from sinews.store import Individual, RunStore, generation_stats
+from sinews.store import Individual, RunInfo, RunStore, generation_stats
 
-__all__ = ["FitnessPlot", "fitness_plot", "genome_file"]
+__all__ = ["DANCE_LABEL", "FitnessPlot", "fitness_label", "fitness_plot", "genome_file"]
+
+DANCE_LABEL = "fitness (beat lift + style)"
+"""What a figure dance's fitness is (GP and spring-net dances alike), for plots."""
 
 
 def genome_file(store: RunStore, individual: Individual, *, text: bool = False) -> str:
@@ -81,5 +84,12 @@ def fitness_plot(store: RunStore, run_id: int) -> FitnessPlot:
     song = info.config.get("song", "")
     title = f"run {run_id}: {info.kind}{f' to {song}' if song else ''}"
     title += " (terms of each best)" if terms else ""
-    title += f", seed {info.seed}\n{kind_of(info).fitness_label}"
+    title += f", seed {info.seed}\n{fitness_label(info)}"
     return FitnessPlot(np.asarray(stats.generations), series, title, marks)
+
+
+def fitness_label(info: RunInfo) -> str:
+    """What a run's fitness measures, for plots: its kind's label, or a figure dance's."""
+    kind = kind_of(info)
+    dance = info.song_hash is not None and kind.name != "dancers"
+    return DANCE_LABEL if dance else kind.fitness_label

@@ -17,6 +17,7 @@ from starlette.routing import BaseRoute, Route
 from sinews.evolve import PhaseIn
 from sinews.experiments.evolution import retune_fitness
 from sinews.experiments.run_config import EvolutionConfig
+from sinews.experiments.run_files import fitness_label
 from sinews.store.lease import leased
 from sinews.studio.figure_exports import export_routes
 from sinews.studio.figure_runs import (
@@ -30,7 +31,6 @@ from sinews.studio.figure_runs import (
     form_tasks,
     max_picks,
 )
-from sinews.studio.figure_songs import DANCE_LABEL
 from sinews.studio.pack import MEDIA_TYPE
 from sinews.studio.service import Studio, Worker
 from sinews.studio.validate import RequestError, body_fields, number, parse_whole, whole
@@ -72,7 +72,7 @@ def _run_json(studio: Studio, run: FigureRun) -> dict[str, Any]:
         "terms": list(config.fitness.names),
         "fitness": config.fitness.to_dict(),
         "fitnessHistory": info.config.get("fitness_history", []),
-        "fitnessLabel": run.kind.fitness_label if info.song_hash is None else DANCE_LABEL,
+        "fitnessLabel": fitness_label(info),
         "maxPicks": max_picks(run),
         "history": studio.figure_runs.history(run.id),
         "song": studio.figure_songs.to_json(info),

@@ -24,10 +24,7 @@ from sinews.store import RunInfo
 from sinews.studio.songs import SongError, SongLibrary
 from sinews.studio.validate import parse_whole
 
-__all__ = ["DANCE_LABEL", "FigureSongs", "figure_song_routes"]
-
-DANCE_LABEL = "fitness (beat lift + style)"
-"""What a dance's fitness is (GP and spring-net dances alike), for the page's plot."""
+__all__ = ["FigureSongs", "figure_song_routes"]
 
 
 class FigureSongs:

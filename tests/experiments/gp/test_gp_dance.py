@@ -16,6 +16,7 @@ from dance_helpers import click_song
 from gp_helpers import stored
 from killed_runs import kill_when, sinews_command, stored_generations
 from sinews.cli import main
+from sinews.experiments.run_files import fitness_plot
 from sinews.store import RunStore
 
 OPTIONS = ["--controller", "gp", "--task", "dance", "--population", "6", "--generations", "4",
@@ -60,6 +61,9 @@ def test_a_dance_is_stored_with_its_song_and_rated_by_the_beat(folder: Path, who
                                                 "smooth"]  # fmt: skip
     lifts = {round(float((ind.terms or {})["lift"] or 0.0), 6) for ind in individuals}
     assert len(lifts) > 3  # programs dance differently to the beat
+    with RunStore(whole) as store:
+        plot = fitness_plot(store, info.id)
+    assert plot.title.endswith("\nfitness (beat lift + style)")  # not the hop's distance label
 
 
 def test_a_killed_dance_resumes_to_the_uninterrupted_one(folder: Path, whole: Path) -> None:
