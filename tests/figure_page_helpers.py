@@ -61,6 +61,11 @@ def settled(server: StudioServer, run: int) -> dict[str, Any]:
         time.sleep(0.2)
 
 
+def copy_of(db: Path, folder: Path) -> Path:
+    """A copy of a closed run database in ``folder``."""
+    return Path(shutil.copy(db, folder / db.name))
+
+
 def stored(db: Path, run: int) -> list[tuple[int, int, Any, float | None, bool]]:
     """Every individual of a run: generation, index, genome, fitness, picked."""
     with RunStore(db) as store:

@@ -16,6 +16,7 @@ from typing import Any
 
 import pytest
 
+from figure_page_helpers import GP, SPRINGNET, sinews
 from studio_helpers import CHROMIUM, CHROMIUM_ARGS, StudioServer
 
 
@@ -28,6 +29,16 @@ def studio_env(tmp_path_factory: pytest.TempPathFactory) -> dict[str, str]:
         "XDG_DATA_HOME": str(root / "data"),
         "XDG_CACHE_HOME": str(root / "cache"),
     }
+
+
+@pytest.fixture(scope="session")
+def lamp_runs(tmp_path_factory: pytest.TempPathFactory, studio_env: dict[str, str]) -> Path:
+    """A database with a spring-net run (1) and a GP run (2) of the lamp, made by the CLI once;
+    copy it (`copy_of`) before changing it."""
+    db = tmp_path_factory.mktemp("lamp-runs") / "studio.db"
+    sinews(db, studio_env, "evolve", *SPRINGNET)
+    sinews(db, studio_env, "evolve", *GP)
+    return db
 
 
 @pytest.fixture(scope="session")

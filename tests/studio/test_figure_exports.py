@@ -16,7 +16,7 @@ import pytest
 from PIL import Image
 from playwright.sync_api import expect
 
-from figure_page_helpers import GP, SPRINGNET, call, doc_shot, sinews
+from figure_page_helpers import call, copy_of, doc_shot, sinews
 from sinews.store import RunStore
 from studio_helpers import StudioServer
 
@@ -51,12 +51,9 @@ def video_frames(path: Path) -> int:
 
 
 @pytest.fixture(scope="module")
-def export_db(tmp_path_factory: pytest.TempPathFactory, studio_env: dict[str, str]) -> Path:
-    """A spring-net run (1) and a GP run (2) of the lamp, made by the CLI."""
-    db = tmp_path_factory.mktemp("figure-exports") / "studio.db"
-    sinews(db, studio_env, "evolve", *SPRINGNET)
-    sinews(db, studio_env, "evolve", *GP)
-    return db
+def export_db(tmp_path_factory: pytest.TempPathFactory, lamp_runs: Path) -> Path:
+    """A copy of the lamp runs (1: spring net, 2: GP) made by the CLI."""
+    return copy_of(lamp_runs, tmp_path_factory.mktemp("figure-exports"))
 
 
 @pytest.fixture(scope="module")

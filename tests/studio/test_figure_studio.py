@@ -14,19 +14,16 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from figure_page_helpers import GP, SPRINGNET, call, ok, settled, sinews, stored
+from figure_page_helpers import GP, SPRINGNET, call, copy_of, ok, settled, sinews, stored
 from killed_runs import sinews_command
 from sinews.store import RunStore
 from studio_helpers import StudioServer, decode_pack
 
 
 @pytest.fixture(scope="module")
-def figure_db(tmp_path_factory: pytest.TempPathFactory, studio_env: dict[str, str]) -> Path:
-    """A database with a spring-net run (1) and a GP run (2) of the lamp, made by the CLI."""
-    db = tmp_path_factory.mktemp("figures") / "studio.db"
-    sinews(db, studio_env, "evolve", *SPRINGNET)
-    sinews(db, studio_env, "evolve", *GP)
-    return db
+def figure_db(tmp_path_factory: pytest.TempPathFactory, lamp_runs: Path) -> Path:
+    """A copy of the lamp runs (1: spring net, 2: GP) made by the CLI."""
+    return copy_of(lamp_runs, tmp_path_factory.mktemp("figures"))
 
 
 @pytest.fixture(scope="module")
