@@ -61,6 +61,21 @@ def settled(server: StudioServer, run: int) -> dict[str, Any]:
         time.sleep(0.2)
 
 
+LOADED = "window.figures && figures.pack && !document.body.classList.contains('busy')"
+"""True in the figure page once a generation is drawn and nothing is being fetched."""
+
+
+def pick_and_breed(page: Any, cells: list[int], shown: int) -> list[int]:
+    """Click ``cells`` of the figure page's grid and breed; wait until generation ``shown`` is
+    drawn. The picks' individual ids."""
+    ids: list[int] = page.evaluate(f"{cells}.map((i) => figures.pack.header.individuals[i].id)")
+    for i in cells:
+        page.click(f".cell[data-index='{i}']")
+    page.click("#breed")
+    page.wait_for_function(f"{LOADED} && figures.shown === {shown}")
+    return ids
+
+
 def copy_of(db: Path, folder: Path) -> Path:
     """A copy of a closed run database in ``folder``."""
     return Path(shutil.copy(db, folder / db.name))

@@ -14,7 +14,7 @@ import pytest
 from playwright.sync_api import expect
 
 from dance_helpers import click_song
-from figure_page_helpers import call, ok, sinews, stored
+from figure_page_helpers import LOADED, call, ok, pick_and_breed, sinews, stored
 from sinews.cli import main
 from sinews.experiments.kinds import run_kind
 from sinews.store import RunStore
@@ -25,7 +25,6 @@ SONG_SECONDS = 1.5
 """Each dance is the first 1.5 s of a 2 s click song at 120 BPM (beats at 0.25, 0.75, 1.25 s)."""
 DANCE = ["--task", "dance", "--population", "6", "--generations", "1", "--seconds",
          str(SONG_SECONDS), "--seed", "2"]  # fmt: skip
-LOADED = "window.figures && figures.pack && !document.body.classList.contains('busy')"
 SEEK = """(seconds) => {
   const slider = document.getElementById("seek");
   slider.value = String(Math.round(seconds * figures.drawer.fps));
@@ -107,11 +106,7 @@ def test_dance_runs_are_picked_and_bred_and_resumed_bit_for_bit(
     studio_env: dict[str, str],
 ) -> None:
     open_run(page, dance_server, 1)  # GP: the picks parent every crossover
-    picks = page.evaluate("[1, 4].map((i) => figures.pack.header.individuals[i].id)")
-    page.click(".cell[data-index='1']")
-    page.click(".cell[data-index='4']")
-    page.click("#breed")
-    page.wait_for_function(f"{LOADED} && figures.shown === 1")
+    picks = pick_and_breed(page, [1, 4], 1)
     parents = page.evaluate("figures.pack.header.individuals.map((p) => p.parents)")
     crossed = [sorted(p) for p in parents if len(p) == 2]
     assert crossed and all(p == sorted(picks) for p in crossed)
@@ -120,10 +115,7 @@ def test_dance_runs_are_picked_and_bred_and_resumed_bit_for_bit(
     open_run(page, dance_server, 2)  # spring nets, hybrid GA: the picks rank first
     assert page.evaluate("figures.run.strategy") == "hybrid"
     people = page.evaluate("figures.pack.header.individuals.map((p) => [p.id, p.fitness])")
-    page.click(".cell[data-index='0']")
-    page.click(".cell[data-index='3']")
-    page.click("#breed")
-    page.wait_for_function(f"{LOADED} && figures.shown === 1")
+    pick_and_breed(page, [0, 3], 1)
     elite = page.evaluate("figures.pack.header.individuals[0].parents")
     best_pick = max((people[0], people[3]), key=lambda p: p[1])[0]
     assert elite == [best_pick]  # the best pick is kept, however it ranked

@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from figure_page_helpers import call, sinews
+from figure_page_helpers import LOADED, call, sinews
 from killed_runs import sinews_command
 from sinews.store import RunStore
 from studio_helpers import CHROMIUM, CHROMIUM_ARGS, INK, StudioServer, decode_pack
@@ -23,7 +23,6 @@ WEBGL_ARGS = [a for a in CHROMIUM_ARGS if a != "--disable-gpu"] + [
     "--use-angle=swiftshader",
     "--enable-unsafe-swiftshader",
 ]
-LOADED = "window.figures && figures.pack && !document.body.classList.contains('busy')"
 CAMERA = "figures.stageView.camera.position.toArray()"
 
 

@@ -13,6 +13,7 @@ from typing import Any
 import pytest
 from playwright.sync_api import expect
 
+from figure_page_helpers import LOADED, pick_and_breed
 from killed_runs import sinews_command
 from studio_helpers import INK, StudioServer
 
@@ -22,7 +23,6 @@ SEEK = """([id, value]) => {
   slider.value = String(value);
   slider.dispatchEvent(new Event("input"));
 }"""
-LOADED = "window.figures && figures.pack && !document.body.classList.contains('busy')"
 
 
 @pytest.fixture(scope="module")
@@ -110,11 +110,7 @@ def test_a_gp_program_is_staged_and_picks_parent_the_next_generation(
     page.click(".cell[data-index='4'] .to-stage")
     assert page.evaluate("figures.staged") == 4
     expect(page.locator("#stage-title")).to_contain_text("#4")
-    picks = page.evaluate("[4, 6].map((i) => figures.pack.header.individuals[i].id)")
-    page.click(".cell[data-index='4']")
-    page.click(".cell[data-index='6']")
-    page.click("#breed")
-    page.wait_for_function(f"{LOADED} && figures.shown === 1")
+    picks = pick_and_breed(page, [4, 6], 1)
     parents = page.evaluate("figures.pack.header.individuals.map((p) => p.parents)")
     crossed = [sorted(p) for p in parents if len(p) == 2]
     assert len(crossed) == 9  # 90 % crossover, every pair the two picks

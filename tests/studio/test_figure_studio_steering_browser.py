@@ -12,11 +12,10 @@ from typing import Any
 import pytest
 from playwright.sync_api import expect
 
-from figure_page_helpers import doc_shot, sinews, stored
+from figure_page_helpers import LOADED, doc_shot, sinews, stored
 from sinews.store import RunStore
 from studio_helpers import StudioServer
 
-LOADED = "window.figures && figures.pack && !document.body.classList.contains('busy')"
 SEEK_END = """() => {
   const slider = document.getElementById("seek");
   slider.value = String(Math.round(0.6 * Number(slider.max)));
