@@ -16,7 +16,7 @@ from typing import Any
 
 import pytest
 
-from figure_page_helpers import GP, SPRINGNET, sinews
+from figure_page_helpers import GP, SPRINGNET, copy_of, sinews
 from studio_helpers import CHROMIUM, CHROMIUM_ARGS, StudioServer
 
 
@@ -39,6 +39,20 @@ def lamp_runs(tmp_path_factory: pytest.TempPathFactory, studio_env: dict[str, st
     sinews(db, studio_env, "evolve", *SPRINGNET)
     sinews(db, studio_env, "evolve", *GP)
     return db
+
+
+@pytest.fixture(scope="module")
+def lamp_db(tmp_path_factory: pytest.TempPathFactory, lamp_runs: Path) -> Path:
+    """This module's copy of `lamp_runs`."""
+    return copy_of(lamp_runs, tmp_path_factory.mktemp("lamps"))
+
+
+@pytest.fixture(scope="module")
+def lamp_server(lamp_db: Path, studio_env: dict[str, str]) -> Iterator[StudioServer]:
+    """A studio on this module's `lamp_db`."""
+    studio = StudioServer(lamp_db, studio_env)
+    yield studio
+    studio.stop()
 
 
 @pytest.fixture(scope="session")

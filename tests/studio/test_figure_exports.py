@@ -7,7 +7,6 @@ import json
 import subprocess
 import urllib.error
 import urllib.request
-from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -16,7 +15,7 @@ import pytest
 from PIL import Image
 from playwright.sync_api import expect
 
-from figure_page_helpers import call, copy_of, doc_shot, sinews
+from figure_page_helpers import call, doc_shot, sinews
 from sinews.store import RunStore
 from studio_helpers import StudioServer
 
@@ -50,19 +49,6 @@ def video_frames(path: Path) -> int:
     return int(stream["nb_read_frames"])
 
 
-@pytest.fixture(scope="module")
-def export_db(tmp_path_factory: pytest.TempPathFactory, lamp_runs: Path) -> Path:
-    """A copy of the lamp runs (1: spring net, 2: GP) made by the CLI."""
-    return copy_of(lamp_runs, tmp_path_factory.mktemp("figure-exports"))
-
-
-@pytest.fixture(scope="module")
-def export_server(export_db: Path, studio_env: dict[str, str]) -> Iterator[StudioServer]:
-    studio = StudioServer(export_db, studio_env)
-    yield studio
-    studio.stop()
-
-
 def best_id(db: Path, env: dict[str, str], run: int) -> int:
     """The run's best individual, as ``sinews runs best`` names it."""
     done = sinews(db, env, "runs", "best", str(run), "-o", str(db.parent / "best.json"))
@@ -72,13 +58,13 @@ def best_id(db: Path, env: dict[str, str], run: int) -> int:
 @pytest.mark.slow  # ~25 s each at load 7: four CLI processes to compare with, two videos
 @pytest.mark.parametrize("run", [1, 2])
 def test_the_staged_figure_exports_as_the_cli_writes_it(
-    export_server: StudioServer,
-    export_db: Path,
+    lamp_server: StudioServer,
+    lamp_db: Path,
     studio_env: dict[str, str],
     tmp_path: Path,
     run: int,
 ) -> None:
-    individual = best_id(export_db, studio_env, run)
+    individual = best_id(lamp_db, studio_env, run)
     route = f"/api/figures/runs/{run}/individuals/{individual}"
     cli = {
         "genome.json": ["runs", "best", str(run), "-o", str(tmp_path / "genome.json")],
@@ -91,14 +77,14 @@ def test_the_staged_figure_exports_as_the_cli_writes_it(
     made = {}
     for what, theirs in FILES.items():
         if what == "program.txt" and run == 1:  # a spring net has no program
-            status, answer = call(export_server, f"{route}/{what}", {})
+            status, answer = call(lamp_server, f"{route}/{what}", {})
             assert status == 404 and "export genome.json" in answer["error"]
             continue
-        assert call(export_server, f"{route}/{what}")[0] == 405  # a GET cannot make files
-        status, media, data = fetch(export_server, f"{route}/{what}")
+        assert call(lamp_server, f"{route}/{what}")[0] == 405  # a GET cannot make files
+        status, media, data = fetch(lamp_server, f"{route}/{what}")
         assert status == 200 and data, (what, data)
         assert media.split(";")[0] == TYPES[what]
-        sinews(export_db, studio_env, *cli[what])
+        sinews(lamp_db, studio_env, *cli[what])
         if what == "figure.mp4":  # the same drawing, the same video
             (tmp_path / "page.mp4").write_bytes(data)
             frames = video_frames(tmp_path / "page.mp4")
@@ -111,26 +97,26 @@ def test_the_staged_figure_exports_as_the_cli_writes_it(
         assert made["program.txt"].startswith(b"(list")
         assert json.loads(made["genome.json"])["program"] + "\n" == made["program.txt"].decode()
     assert made["strobe.png"][:8] == b"\x89PNG\r\n\x1a\n"
-    with RunStore(export_db) as store:
+    with RunStore(lamp_db) as store:
         files = [Path(m.path) for m in store.media(run) if m.individual_id == individual]
     kept = {p.name.rsplit("-", 1)[1] for p in files if p.parent.name == "exports"}
     assert kept == set(made)
-    again = fetch(export_server, f"{route}/strobe.png")[2]  # asked again: the kept file
+    again = fetch(lamp_server, f"{route}/strobe.png")[2]  # asked again: the kept file
     assert again == made["strobe.png"]
 
 
 def test_the_fitness_plot_exports_as_sinews_plot_draws_it(
-    export_server: StudioServer, export_db: Path, studio_env: dict[str, str], tmp_path: Path
+    lamp_server: StudioServer, lamp_db: Path, studio_env: dict[str, str], tmp_path: Path
 ) -> None:
-    status, media, page = fetch(export_server, "/api/figures/runs/1/plot.png")
+    status, media, page = fetch(lamp_server, "/api/figures/runs/1/plot.png")
     assert status == 200 and media == "image/png"
-    sinews(export_db, studio_env, "plot", "1", "-o", str(tmp_path / "plot.png"))
+    sinews(lamp_db, studio_env, "plot", "1", "-o", str(tmp_path / "plot.png"))
     assert page[:8] == b"\x89PNG\r\n\x1a\n" and page == (tmp_path / "plot.png").read_bytes()
-    assert fetch(export_server, "/api/figures/runs/1/plot.png")[2] == page
+    assert fetch(lamp_server, "/api/figures/runs/1/plot.png")[2] == page
 
 
-def test_exports_take_ids_only(export_server: StudioServer, export_db: Path) -> None:
-    with RunStore(export_db) as store:
+def test_exports_take_ids_only(lamp_server: StudioServer, lamp_db: Path) -> None:
+    with RunStore(lamp_db) as store:
         other = store.individuals(2, 0)[0].id  # a GP program, not run 1's
     for path, status, message in (
         (f"/api/figures/runs/1/individuals/{other}/genome.json", 404, f"no individual {other}"),
@@ -140,18 +126,18 @@ def test_exports_take_ids_only(export_server: StudioServer, export_db: Path) -> 
         ("/api/figures/runs/1/individuals/-1/genome.json", 400, "whole number"),
         ("/api/figures/runs/99/plot.png", 400, "no run 99"),
     ):
-        got, answer = call(export_server, path, {})
+        got, answer = call(lamp_server, path, {})
         assert got == status and message in answer["error"] and "\n" not in answer["error"]
         assert "/" not in answer["error"].split("no run")[0]  # no server path told
-    refused = call(export_server, "/api/figures/runs/1/plot.png", {}, Origin="http://evil.example")
+    refused = call(lamp_server, "/api/figures/runs/1/plot.png", {}, Origin="http://evil.example")
     assert refused[0] == 403
-    assert call(export_server, "/api/figures/runs/1/plot.png", {}, Host="evil.example")[0] == 400
+    assert call(lamp_server, "/api/figures/runs/1/plot.png", {}, Host="evil.example")[0] == 400
 
 
 def test_the_page_downloads_each_export_of_the_staged_figure(
-    page: Any, export_server: StudioServer, tmp_path: Path, shots: Path
+    page: Any, lamp_server: StudioServer, tmp_path: Path, shots: Path
 ) -> None:
-    page.goto(f"{export_server.url}figures?run=2")
+    page.goto(f"{lamp_server.url}figures?run=2")
     page.wait_for_function("window.figures && figures.pack && figures.run.id === 2")
     page.click(".cell[data-index='3'] .to-stage")
     staged = page.evaluate("figures.pack.header.individuals[3]")
@@ -178,7 +164,7 @@ def test_the_page_downloads_each_export_of_the_staged_figure(
     page.set_viewport_size({"width": 1600, "height": 1200})  # the message line and the buttons
     page.evaluate("scrollTo(0, 0)")
     doc_shot(page, shots, "figure-studio-exports.png")
-    page.goto(f"{export_server.url}figures?run=1")  # a spring net has no program to export
+    page.goto(f"{lamp_server.url}figures?run=1")  # a spring net has no program to export
     page.wait_for_function("window.figures && figures.pack && figures.run.id === 1")
     expect(page.locator("#exports button[data-file='program.txt']")).to_be_disabled()
     doc_shot(page.locator("#stage-box"), shots, "figure-studio-net.png")
