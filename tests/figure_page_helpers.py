@@ -95,11 +95,12 @@ def stored(db: Path, run: int) -> list[tuple[int, int, Any, float | None, bool]]
 DOCS = Path(__file__).resolve().parents[1] / "docs"
 
 
-def doc_shot(part: Any, shots: Path, name: str) -> Path:
-    """Screenshot a page or an element to ``shots/name``; with ``SINEWS_FIGURE_DOCS`` set, also
-    to ``docs/name`` (the figure studio's pictures in docs/figure-studio.md)."""
+def doc_shot(part: Any, shots: Path, name: str, **options: Any) -> Path:
+    """Screenshot a page or an element (Playwright ``options``, e.g. ``clip``) to
+    ``shots/name``; with ``SINEWS_FIGURE_DOCS`` set, also to ``docs/name`` (the figure
+    studio's pictures in docs/figure-studio.md)."""
     path = shots / name
-    part.screenshot(path=path)
+    part.screenshot(path=path, **options)
     if os.environ.get("SINEWS_FIGURE_DOCS"):
         shutil.copy(path, DOCS / name)
     return path

@@ -4,7 +4,6 @@ them bit for bit), and the new-run form starts a dance and a 3D run."""
 
 from __future__ import annotations
 
-import os
 import shutil
 from collections.abc import Iterator
 from pathlib import Path
@@ -14,13 +13,12 @@ import pytest
 from playwright.sync_api import expect
 
 from dance_helpers import click_song
-from figure_page_helpers import LOADED, call, ok, pick_and_breed, sinews, stored
+from figure_page_helpers import LOADED, call, doc_shot, ok, pick_and_breed, sinews, stored
 from sinews.cli import main
 from sinews.experiments.kinds import run_kind
 from sinews.store import RunStore
 from studio_helpers import INK, StudioServer
 
-DOCS = Path(__file__).resolve().parents[2] / "docs"
 SONG_SECONDS = 1.5
 """Each dance is the first 1.5 s of a 2 s click song at 120 BPM (beats at 0.25, 0.75, 1.25 s)."""
 DANCE = ["--task", "dance", "--population", "6", "--generations", "1", "--seconds",
@@ -93,9 +91,7 @@ def test_a_dance_replays_on_its_songs_audio_clock(
     assert picture_at(0.2) == at_start  # the same song time draws the same picture
     picture_at(0.8)
     assert page.get_attribute("#beats", "data-lit") == "1"  # the second beat was just heard
-    page.screenshot(path=shots / "figure-dance.png")
-    if os.environ.get("SINEWS_FIGURE_DOCS"):
-        shutil.copy(shots / "figure-dance.png", DOCS / "figure-studio-dance.png")
+    doc_shot(page, shots, "figure-studio-dance.png")
 
 
 @pytest.mark.slow  # four CLI resumes in subprocesses (the page's picks and their twins)
@@ -152,10 +148,12 @@ def test_the_form_starts_a_dance_and_a_3d_run(
     assert uploaded.startswith("u") and page.inner_text("#form-song option:checked") == "clicks.wav"
     for field, value in (("population", "5"), ("generations", "1"), ("seconds", "1")):
         page.fill(f"#form-{field}", value)
-    page.screenshot(path=shots / "figure-dance-form.png", clip={"x": 0, "y": 0, "width": 1600,
-                                                                "height": 420})  # fmt: skip
-    if os.environ.get("SINEWS_FIGURE_DOCS"):
-        shutil.copy(shots / "figure-dance-form.png", DOCS / "figure-studio-dance-form.png")
+    doc_shot(
+        page,
+        shots,
+        "figure-studio-dance-form.png",
+        clip={"x": 0, "y": 0, "width": 1600, "height": 420},
+    )
     page.click("#start-run")
     page.wait_for_function(
         "figures.run && figures.run.song && figures.run.generations === 1"

@@ -3,8 +3,6 @@ program on the stage, a run started from the page and watched until it is done."
 
 from __future__ import annotations
 
-import os
-import shutil
 import subprocess
 from collections.abc import Iterator
 from pathlib import Path
@@ -13,11 +11,10 @@ from typing import Any
 import pytest
 from playwright.sync_api import expect
 
-from figure_page_helpers import LOADED, pick_and_breed
+from figure_page_helpers import LOADED, doc_shot, pick_and_breed
 from killed_runs import sinews_command
 from studio_helpers import INK, StudioServer
 
-DOCS = Path(__file__).resolve().parents[2] / "docs"
 SEEK = """([id, value]) => {
   const slider = document.getElementById(id);
   slider.value = String(value);
@@ -68,13 +65,11 @@ def test_a_generation_is_a_grid_of_replays_picked_and_bred(
 
     page.click(".cell[data-index='3']")
     page.click(".cell[data-index='8']")
+    page.click("#play")
+    doc_shot(page, shots, "figure-studio.png")
     page.click(".cell[data-index='5']")  # Alton's GA keeps at most n/5 = 2 by hand
     expect(page.locator(".cell.picked")).to_have_count(2)
     expect(page.locator("#message")).to_contain_text("pick at most 2")
-    page.click("#play")
-    page.screenshot(path=shots / "figure-grid.png")
-    if os.environ.get("SINEWS_FIGURE_DOCS"):
-        shutil.copy(shots / "figure-grid.png", DOCS / "figure-studio.png")
     picks = page.evaluate("[3, 8].map((i) => figures.pack.header.individuals[i].id)")
     page.click("#breed")
     page.wait_for_function(f"{LOADED} && figures.shown === 2")
