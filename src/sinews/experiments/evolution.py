@@ -66,10 +66,13 @@ class Scores:
         terms: (P, K) float64 term values (higher is better), columns in the
             scorer's `Scorer.term_names` order.
         failed: (P,) bool, True where the simulation failed.
+        motion: P records of each rollout when the chunk recorded them (see
+            `sinews.experiments.motion_log`), else empty.
     """
 
     terms: npt.NDArray[np.float64]
     failed: npt.NDArray[np.bool_]
+    motion: tuple[Any, ...] = ()
 
 
 class Scorer(Protocol):

@@ -24,6 +24,7 @@ from typing import Any, Protocol
 from sinews.errors import SinewsError
 from sinews.evolve import Evaluator
 from sinews.experiments.evolution import GenerationSummary, best_at_full_weight
+from sinews.experiments.motion_log import MotionLog
 from sinews.experiments.run_config import EvolutionConfig
 from sinews.store import Individual, RunInfo, RunStore
 from sinews.trajectory import Trajectory
@@ -160,10 +161,12 @@ class RunKind(Protocol):
         *,
         evaluator: Evaluator | None = None,
         mutation: float | None = None,
+        log: MotionLog | None = None,
     ) -> GenerationSummary:
         """Record a person's ``picks`` in ``generation`` (the last) and breed the next.
 
         ``mutation`` overrides the strategy's mutation strength for this breeding.
+        ``log`` keeps the motion simulated while scoring (figure kinds; see `replay`).
         `SinewsError` if the run's strategy takes no picks.
         """
         ...
@@ -175,11 +178,13 @@ class RunKind(Protocol):
         *,
         record_hz: float = 30.0,
         forces: bool = False,
+        log: MotionLog | None = None,
     ) -> list[Replay]:
         """Simulate stored individuals of one run again, exactly as they were scored.
 
         ``forces`` records per-node forces (the debug overlay) where the kind has them
-        (others ignore it; drawing refuses an overlay without forces).
+        (others ignore it; drawing refuses an overlay without forces). Figure kinds take
+        the motion ``log`` kept at ``record_hz`` instead of simulating it again.
         """
         ...
 

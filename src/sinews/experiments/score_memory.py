@@ -19,8 +19,9 @@ import numpy.typing as npt
 
 from sinews.evolve import Evaluator, chunk_slices
 from sinews.experiments.evolution import Scores
+from sinews.experiments.motion_log import MotionLog
 
-__all__ = ["ChunkContext", "ScoreMemory", "score_in_chunks"]
+__all__ = ["ChunkContext", "ScoreMemory", "logged", "score_in_chunks"]
 
 C = TypeVar("C")
 S = TypeVar("S")
@@ -33,10 +34,12 @@ class ChunkContext(Generic[S]):
     Attributes:
         settings: the run's settings.
         nthread: MuJoCo threads per chunk (None: every CPU).
+        record_hz: record each rollout at this rate into `Scores.motion` (None: don't).
     """
 
     settings: S
     nthread: int | None
+    record_hz: float | None = None
 
 
 def score_in_chunks(
@@ -55,7 +58,18 @@ def score_in_chunks(
     return Scores(
         terms=np.concatenate([part.terms for part in parts]),
         failed=np.concatenate([part.failed for part in parts]),
+        motion=tuple(m for part in parts for m in part.motion),
     )
+
+
+def logged(
+    log: MotionLog | None, keys: Sequence[Hashable], rows: npt.NDArray[np.intp], scores: Scores
+) -> Scores:
+    """Keep the recorded motion of the genomes at ``rows`` (named by ``keys``) in ``log``."""
+    if log is not None:
+        for row, motion in zip(rows.tolist(), scores.motion, strict=True):
+            log.put(keys[row], motion)
+    return scores
 
 
 @dataclass(eq=False)

@@ -25,15 +25,19 @@ from sinews.render.figure_geometry import FigureGeometry
 from sinews.render.figure_panel import NetPanel
 from sinews.render.style import default_colors
 from sinews.store import Individual
-from sinews.studio.figure_runs import MAX_SHOWN, FigureRun, FigureRunError, FigureRuns
+from sinews.studio.figure_runs import (
+    MAX_SHOWN,
+    POSE_HZ,
+    FigureRun,
+    FigureRunError,
+    FigureRuns,
+)
 from sinews.studio.motion import Recent
 from sinews.studio.pack import MILLIMETRES, encode_pack, millimetres
 from sinews.studio.shapes_pack import encode_shapes
 
 __all__ = ["POSE_HZ", "FigureMotion"]
 
-POSE_HZ = 50.0
-"""Frames per second of the poses sent (a 5 s trial is 251 frames)."""
 PACKS_KEPT = 64 * 2**20
 """Bytes of generation packs kept."""
 
@@ -92,7 +96,8 @@ class FigureMotion:
         return run.kind.replay(self.runs.store, self.timeline_bests(run_id))
 
     def _pack(self, run: FigureRun, people: list[Individual], generation: int) -> bytes:
-        replays = run.kind.replay(self.runs.store, people, record_hz=POSE_HZ)
+        replays = run.kind.replay(self.runs.store, people, record_hz=POSE_HZ,
+                                  log=self.runs.motion_log(run.id))  # fmt: skip
         programs = [run.kind.genome_text(p) for p in people]
         return _pack(run.id, generation, replays, programs)
 

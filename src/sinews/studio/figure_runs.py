@@ -26,6 +26,7 @@ from sinews.evolve import SerialEvaluator
 from sinews.evolve.registry import STRATEGIES
 from sinews.experiments.gp.run import TARGET_AXES, TASKS
 from sinews.experiments.kinds import RunKind, kind_of, run_kind
+from sinews.experiments.motion_log import MotionLog
 from sinews.experiments.springnet.dance import DANCE_FIGURES
 from sinews.figures.tasks import TASKS as TASK_FACTORIES
 from sinews.store import RunInfo, RunStore
@@ -56,6 +57,8 @@ POPULATIONS = range(5, 26)
 """Individuals per generation the page offers (a grid of at most 25)."""
 MAX_SHOWN = POPULATIONS.stop - 1
 """Most individuals per generation the page shows (a run with more cannot be opened)."""
+POSE_HZ = 50.0
+"""Frames per second of the poses the page draws (a 5 s trial is 251 frames)."""
 MAX_GENERATIONS = 500
 GENERATIONS = range(1, MAX_GENERATIONS + 1)
 MAX_SECONDS = 20.0
@@ -190,6 +193,12 @@ class FigureRuns:
 
     def __init__(self, store: RunStore) -> None:
         self.store = store
+        self._logs: dict[int, MotionLog] = {}
+
+    def motion_log(self, run_id: int) -> MotionLog:
+        """The motion the page's picks of a run simulated while scoring, at `POSE_HZ`: the
+        next generation's pack is drawn from it instead of simulating it again."""
+        return self._logs.setdefault(run_id, MotionLog(POSE_HZ))
 
     def get(self, run_id: int) -> FigureRun:
         """A figure run the page can show; `FigureRunError` otherwise."""
@@ -238,8 +247,9 @@ class FigureRuns:
             raise FigureRunError(f"pick 1 to {most} individuals")
         if len(set(picks)) != len(picks) or not all(0 <= p < run.population for p in picks):
             raise FigureRunError(f"picks must be distinct individuals 0–{run.population - 1}")
+        log = self.motion_log(run_id)
         summary = run.kind.pick(self.store, run_id, generation, list(picks),
-                                evaluator=SerialEvaluator())  # fmt: skip
+                                evaluator=SerialEvaluator(), log=log)  # fmt: skip
         return summary.generation
 
     def history(self, run_id: int) -> list[dict[str, Any]]:

@@ -39,6 +39,7 @@ from sinews.experiments.kinds import (
     check_strategy,
     run_of,
 )
+from sinews.experiments.motion_log import MotionLog
 from sinews.experiments.run_config import EvolutionConfig
 from sinews.limits import check_number
 from sinews.music.analysis import MAX_BEAT_SHIFT, MAX_BPM, MIN_BPM, analyse_file, shift_beats
@@ -138,8 +139,10 @@ class DancerKind:
         *,
         evaluator: Evaluator | None = None,
         mutation: float | None = None,
+        log: MotionLog | None = None,
     ) -> GenerationSummary:
-        """Record a person's picks in ``generation`` (the last) and breed the next.
+        """Record a person's picks in ``generation`` (the last) and breed the next (``log``:
+        unused, dances are replayed with the song's own frame rate).
 
         The picks are told to the run's interactive or hybrid strategy; the new
         generation is danced and scored (hybrid) or stored unscored (by hand),
@@ -168,8 +171,10 @@ class DancerKind:
         *,
         record_hz: float = 30.0,
         forces: bool = False,
+        log: MotionLog | None = None,
     ) -> list[Replay]:
-        """Dance stored dancers of one run again (one batch, at 60 fps), with the song."""
+        """Dance stored dancers of one run again (one batch, at 60 fps), with the song
+        (``log``: unused)."""
         if not individuals:
             return []
         info = store.run(run_of(individuals))

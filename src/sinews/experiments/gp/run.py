@@ -40,6 +40,7 @@ from sinews.experiments.kinds import (
     check_strategy,
     run_of,
 )
+from sinews.experiments.motion_log import MotionLog
 from sinews.experiments.run_config import ConfigError, EvolutionConfig, build_config
 from sinews.figures.tasks import Task, make_task
 from sinews.limits import check_number
@@ -226,6 +227,7 @@ class GPKind:
         *,
         evaluator: Evaluator | None = None,
         mutation: float | None = None,
+        log: MotionLog | None = None,
     ) -> GenerationSummary:
         """``picks`` of ``generation`` (the last) parent the next one's crossovers (the rest by
         fitness tournaments, see `sinews.evolve.gp`); breed and score it."""
@@ -235,7 +237,7 @@ class GPKind:
         settings = _settings(info)
         return record_picks(
             store, run_id, generation, picks, strategies=Strategies(settings.genomes),
-            scorer=GPScorer(settings, evaluator or SerialEvaluator()),
+            scorer=GPScorer(settings, evaluator or SerialEvaluator(), log),
             spec=EvolutionConfig.from_dict(info.config).fitness,
         )  # fmt: skip
 
@@ -246,28 +248,40 @@ class GPKind:
         *,
         record_hz: float = 30.0,
         forces: bool = False,
+        log: MotionLog | None = None,
     ) -> list[Replay]:
-        """Simulate stored programs of one run again (one batch), with the task's scene."""
+        """Simulate stored programs of one run again (one batch), with the task's scene;
+        programs whose motion ``log`` kept at ``record_hz`` are not simulated again."""
         if not individuals:
             return []
         settings = _settings(store.run(run_of(individuals)))
-        programs = settings.parse([ind.genome for ind in individuals])
-        done = measure_programs(settings, programs, Runtime(record_hz=record_hz), record=True)
+        kept = log if log is not None and log.hz == record_hz else None
+        motion: list[Any] = [None if kept is None else kept.get(ind.genome) for ind in individuals]
+        missing = [k for k, m in enumerate(motion) if m is None]
+        if missing:
+            programs = settings.parse([individuals[k].genome for k in missing])
+            done = measure_programs(settings, programs, Runtime(record_hz=record_hz), record=True)
+            for j, k in enumerate(missing):
+                motion[k] = (
+                    done.result.trajectory(j),
+                    done.terms[j],
+                    float(done.result.distance[j]),
+                )
         scene = scene_of(settings.task)
         names = list(settings.task.weights)
-        return [
-            Replay(
+        replays = []
+        for ind, (trajectory, terms, distance) in zip(individuals, motion, strict=True):
+            replays.append(Replay(
                 individual=ind,
-                trajectory=done.result.trajectory(k),
+                trajectory=trajectory,
                 title=f"{settings.task.figure.name}, generation {ind.generation} #{ind.index}",
-                summary=_summary(names, done.terms[k], float(done.result.distance[k])),
-                distance=float(done.result.distance[k]),
+                summary=_summary(names, terms, distance),
+                distance=distance,
                 audio=None if settings.song_path is None else Path(settings.song_path),
                 figure=settings.task.figure,
                 scene=scene,
-            )
-            for k, ind in enumerate(individuals)
-        ]
+            ))  # fmt: skip
+        return replays
 
     def genome_document(self, store: RunStore, individual: Individual) -> dict[str, Any]:
         """The program as JSON: its S-expression and what its symbols mean."""

@@ -19,7 +19,8 @@ from sinews.evolve import Evaluator, SerialEvaluator
 from sinews.experiments.evolution import Scores
 from sinews.experiments.gp.settings import GPSettings, Runtime
 from sinews.experiments.gp.simulate import measure_programs
-from sinews.experiments.score_memory import ChunkContext, ScoreMemory, score_in_chunks
+from sinews.experiments.motion_log import MotionLog
+from sinews.experiments.score_memory import ChunkContext, ScoreMemory, logged, score_in_chunks
 
 __all__ = [
     "GPScorer",
@@ -30,9 +31,16 @@ __all__ = [
 def score_chunk(context: ChunkContext[GPSettings], texts: Sequence[str]) -> Scores:
     """The evaluator's work unit: simulate a chunk of stored programs and measure their terms."""
     settings = context.settings
-    runtime = Runtime(nthread=context.nthread)
-    done = measure_programs(settings, settings.parse(texts), runtime)
-    return Scores(terms=done.terms, failed=done.failed.copy())
+    if context.record_hz is None:
+        done = measure_programs(settings, settings.parse(texts), Runtime(nthread=context.nthread))
+        return Scores(terms=done.terms, failed=done.failed.copy())
+    runtime = Runtime(nthread=context.nthread, record_hz=context.record_hz)
+    done = measure_programs(settings, settings.parse(texts), runtime, record=True)
+    motion = tuple(
+        (done.result.trajectory(k), done.terms[k].copy(), float(done.result.distance[k]))
+        for k in range(len(texts))
+    )
+    return Scores(terms=done.terms, failed=done.failed.copy(), motion=motion)
 
 
 @dataclass(eq=False)
@@ -42,10 +50,12 @@ class GPScorer:
     Attributes:
         settings: the run's settings.
         evaluator: where the chunks run.
+        log: keeps each simulated program's motion (trajectory, terms, distance), or None.
     """
 
     settings: GPSettings
     evaluator: Evaluator
+    log: MotionLog | None = None
     _memory: ScoreMemory = field(default_factory=ScoreMemory, repr=False)
 
     @property
@@ -56,9 +66,12 @@ class GPScorer:
     def __call__(self, genomes: Sequence[str], seeds: npt.NDArray[np.int64]) -> Scores:
         """Score P programs' S-expressions (the seeds are unused: there is no noise)."""
         nthread = None if isinstance(self.evaluator, SerialEvaluator) else 1
-        context = ChunkContext(self.settings, nthread)
+        context = ChunkContext(self.settings, nthread, None if self.log is None else self.log.hz)
 
         def simulate(rows: npt.NDArray[np.intp]) -> Scores:
-            return score_in_chunks(self.evaluator, score_chunk, context, [genomes[r] for r in rows])
+            scores = score_in_chunks(
+                self.evaluator, score_chunk, context, [genomes[r] for r in rows]
+            )
+            return logged(self.log, genomes, rows, scores)
 
         return self._memory.score(list(genomes), simulate)

@@ -40,6 +40,7 @@ from sinews.experiments.kinds import (
     check_strategy,
     run_of,
 )
+from sinews.experiments.motion_log import MotionLog
 from sinews.experiments.run_config import EvolutionConfig, build_config
 from sinews.experiments.springnet.dance import DANCE_FIGURES
 from sinews.experiments.springnet.score import SpringNetScorer
@@ -190,9 +191,10 @@ class SpringNetKind:
         *,
         evaluator: Evaluator | None = None,
         mutation: float | None = None,
+        log: MotionLog | None = None,
     ) -> GenerationSummary:
         """``picks`` of ``generation`` (the last) survive; breed and score the next."""
-        settings, scorer = _scorer(store.run(run_id), evaluator or SerialEvaluator())
+        settings, scorer = _scorer(store.run(run_id), evaluator or SerialEvaluator(), log)
         strategies = Strategies(_genomes(settings), mutation=mutation)
         return record_picks(
             store, run_id, generation, picks,
@@ -206,36 +208,41 @@ class SpringNetKind:
         *,
         record_hz: float = 30.0,
         forces: bool = False,
+        log: MotionLog | None = None,
     ) -> list[Replay]:
-        """Simulate stored nets of one run again (one batch) with their nets' motion."""
+        """Simulate stored nets of one run again (one batch) with their nets' motion; nets
+        whose motion ``log`` kept at ``record_hz`` are not simulated again."""
         if not individuals:
             return []
         settings = _settings(store.run(run_of(individuals)))
         genes = np.stack([np.asarray(ind.genome, dtype=np.float64) for ind in individuals])
-        result, net = simulate(settings, genes, record_hz=record_hz)
-        assert net is not None
+        kept = log if log is not None and log.hz == record_hz else None
+        motion: list[Any] = [None if kept is None else kept.get(row.tobytes()) for row in genes]
+        missing = [k for k, m in enumerate(motion) if m is None]
+        if missing:
+            result, net = simulate(settings, genes[missing], record_hz=record_hz)
+            assert net is not None
+            for j, k in enumerate(missing):
+                motion[k] = (result.trajectory(j), float(result.distance[j]), net[:, j])
         nets = settings.encoding.decode(genes[:, : settings.encoding.size])
-        figure = result.figure
+        figure = make_figure(settings.figure)
         outputs = np.arange(figure.n_actuators) % settings.masses
-        return [
-            Replay(
+        replays = []
+        for k, (ind, (trajectory, distance, positions)) in enumerate(
+            zip(individuals, motion, strict=True)
+        ):
+            replays.append(Replay(
                 individual=ind,
-                trajectory=result.trajectory(k),
+                trajectory=trajectory,
                 title=f"{figure.name}, generation {ind.generation} #{ind.index}",
-                summary=f"{abs(float(result.distance[k])):.3f} m",
-                distance=float(result.distance[k]),
+                summary=f"{abs(distance):.3f} m",
+                distance=distance,
                 audio=None if settings.song_path is None else Path(settings.song_path),
                 figure=figure,
-                panel=NetPanel(
-                    positions=net[:, k],
-                    masses=nets.masses[k],
-                    springs=nets.springs[k],
-                    outputs=outputs,
-                    labels=figure.joints,
-                ),
-            )
-            for k, ind in enumerate(individuals)
-        ]
+                panel=NetPanel(positions=positions, masses=nets.masses[k],
+                               springs=nets.springs[k], outputs=outputs, labels=figure.joints),
+            ))  # fmt: skip
+        return replays
 
     def genome_document(self, store: RunStore, individual: Individual) -> dict[str, Any]:
         """The net as JSON: its genes, the decoded masses, springs and positions, the wiring."""
@@ -291,10 +298,12 @@ def _settings(info: RunInfo) -> SpringNetSettings:
     return SpringNetSettings.from_values(info.config)
 
 
-def _scorer(info: RunInfo, evaluator: Evaluator) -> tuple[SpringNetSettings, SpringNetScorer]:
+def _scorer(
+    info: RunInfo, evaluator: Evaluator, log: MotionLog | None = None
+) -> tuple[SpringNetSettings, SpringNetScorer]:
     settings = _settings(info)
     spec = EvolutionConfig.from_dict(info.config).fitness
-    return settings, SpringNetScorer(settings=settings, spec=spec, evaluator=evaluator)
+    return settings, SpringNetScorer(settings=settings, spec=spec, evaluator=evaluator, log=log)
 
 
 def _keep(value: object) -> dict[str, list[int]]:

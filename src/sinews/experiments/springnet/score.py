@@ -17,7 +17,8 @@ import numpy.typing as npt
 from sinews.evolve import Evaluator, FitnessSpec, SerialEvaluator
 from sinews.experiments.evolution import Scores
 from sinews.experiments.figures import distance_travelled
-from sinews.experiments.score_memory import ChunkContext, ScoreMemory, score_in_chunks
+from sinews.experiments.motion_log import MotionLog
+from sinews.experiments.score_memory import ChunkContext, ScoreMemory, logged, score_in_chunks
 from sinews.experiments.springnet.settings import SpringNetSettings
 from sinews.experiments.springnet.simulate import simulate
 from sinews.figures.terms import TaskMeter
@@ -35,13 +36,18 @@ def score_chunk(context: ChunkContext[SpringNetSettings], genes: FloatArray) -> 
         numbers depend only on its genes and the settings.
     """
     settings = context.settings
-    if settings.dance is None:
-        result, _ = simulate(settings, genes, nthread=context.nthread)
-        return Scores(terms=distance_travelled(result)[:, None], failed=result.failed.copy())
-    assert settings.music is not None
-    meter = TaskMeter(settings.dance, len(genes), beats=settings.music.beats)
-    result, _ = simulate(settings, genes, nthread=context.nthread, observer=meter)
-    return Scores(terms=meter.terms(), failed=result.failed.copy())
+    meter = None
+    if settings.dance is not None:
+        assert settings.music is not None
+        meter = TaskMeter(settings.dance, len(genes), beats=settings.music.beats)
+    result, net = simulate(settings, genes, record_hz=context.record_hz,
+                           nthread=context.nthread, observer=meter)  # fmt: skip
+    terms = distance_travelled(result)[:, None] if meter is None else meter.terms()
+    motion = () if net is None else tuple(
+        (result.trajectory(k), float(result.distance[k]), net[:, k].copy())
+        for k in range(len(genes))
+    )  # fmt: skip
+    return Scores(terms=terms, failed=result.failed.copy(), motion=motion)
 
 
 @dataclass(eq=False)
@@ -52,11 +58,13 @@ class SpringNetScorer:
         settings: the run's settings.
         spec: the fitness spec.
         evaluator: where the chunks run.
+        log: keeps each simulated net's motion (trajectory, distance, (T, n) net), or None.
     """
 
     settings: SpringNetSettings
     spec: FitnessSpec
     evaluator: Evaluator
+    log: MotionLog | None = None
     _memory: ScoreMemory = field(default_factory=ScoreMemory, repr=False)
 
     @property
@@ -67,9 +75,11 @@ class SpringNetScorer:
     def __call__(self, genomes: FloatArray, seeds: npt.NDArray[np.int64]) -> Scores:
         """Score (P, G) genes (the seeds are unused: the simulation has no noise)."""
         nthread = None if isinstance(self.evaluator, SerialEvaluator) else 1
-        context = ChunkContext(self.settings, nthread)
+        context = ChunkContext(self.settings, nthread, None if self.log is None else self.log.hz)
+        keys = [row.tobytes() for row in genomes]
 
         def simulate(rows: npt.NDArray[np.intp]) -> Scores:
-            return score_in_chunks(self.evaluator, score_chunk, context, genomes[rows])
+            scores = score_in_chunks(self.evaluator, score_chunk, context, genomes[rows])
+            return logged(self.log, keys, rows, scores)
 
-        return self._memory.score([row.tobytes() for row in genomes], simulate)
+        return self._memory.score(keys, simulate)

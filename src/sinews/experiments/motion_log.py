@@ -1,0 +1,43 @@
+"""Motion recorded while scoring, so a replay need not simulate it again.
+
+A figure's rollout is deterministic and does not depend on the batch, so the
+motion a scorer simulated is the motion `RunKind.replay` would simulate. When
+a scorer is given a `MotionLog`, its chunks record the motion at the log's
+rate and the log keeps it by genome key; `RunKind.replay` with the same log
+rebuilds those replays from it and simulates only the rest. The studio keeps
+one log per figure run, so the generation it just bred is drawn at once.
+"""
+
+from __future__ import annotations
+
+from collections import OrderedDict
+from collections.abc import Hashable
+from dataclasses import dataclass, field
+from typing import Any
+
+__all__ = ["MotionLog"]
+
+
+@dataclass(eq=False)
+class MotionLog:
+    """The last ``capacity`` genomes' recorded motion, by genome key (oldest dropped first).
+
+    Attributes:
+        hz: frames per second of the recorded motion.
+        capacity: genomes kept.
+    """
+
+    hz: float
+    capacity: int = 256
+    _motion: OrderedDict[Hashable, Any] = field(default_factory=OrderedDict, repr=False)
+
+    def put(self, key: Hashable, motion: Any) -> None:
+        """Keep ``motion`` (a kind's own record of one genome's rollout) under ``key``."""
+        self._motion[key] = motion
+        self._motion.move_to_end(key)
+        while len(self._motion) > self.capacity:
+            self._motion.popitem(last=False)
+
+    def get(self, key: Hashable) -> Any | None:
+        """The motion kept under ``key``, or None."""
+        return self._motion.get(key)
