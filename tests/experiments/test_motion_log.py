@@ -18,6 +18,8 @@ RUNS = {
     "springnet": ["luxo", "--population", "10", "--generations", "1", "--seconds", "1"],
     "gp": ["luxo", "--controller", "gp", "--task", "hop", "--population", "6", "--generations",
            "1", "--seconds", "1"],
+    "gp3d": ["luxo3d", "--controller", "gp", "--task", "hop", "--population", "6",
+             "--generations", "1", "--seconds", "0.5"],
 }  # fmt: skip
 
 
