@@ -7,9 +7,9 @@ from typing import Annotated
 
 import typer
 
+from sinews import files
 from sinews.errors import SinewsError
 from sinews.evolve import EVALUATORS
-from sinews.files import atomic_path
 from sinews.store import RunStore
 
 __all__ = ["Db", "Executor", "Scheduler", "Workers", "open_store", "write_text"]
@@ -40,7 +40,6 @@ def open_store(db: Path | None, *, readonly: bool = False) -> RunStore:
 def write_text(path: Path, text: str) -> None:
     """Write ``text`` to ``path`` atomically (a reader never sees half a file)."""
     try:
-        with atomic_path(path) as tmp:
-            tmp.write_text(text, encoding="utf-8")
+        files.write_text(path, text)
     except OSError as exc:
         raise SinewsError(f"{path}: cannot write ({exc.strerror or exc})") from None

@@ -20,7 +20,7 @@ import numpy.typing as npt
 from sinews import safe_json
 from sinews.dancers.skeleton import EDGE_NAMES, NODES
 from sinews.errors import SinewsError
-from sinews.files import atomic_path
+from sinews.files import write_text
 
 __all__ = [
     "BODY_GENES",
@@ -195,8 +195,7 @@ class DancerGenome:
         """Write the genome as JSON (atomically) and return the path."""
         path = Path(path)
         try:
-            with atomic_path(path) as tmp:
-                tmp.write_text(json.dumps(self.to_dict(), indent=1) + "\n")
+            write_text(path, json.dumps(self.to_dict(), indent=1) + "\n")
         except OSError as exc:
             raise GenomeError(f"{path}: cannot write ({exc.strerror})") from None
         return path

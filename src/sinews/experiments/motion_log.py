@@ -11,11 +11,11 @@ one log per figure run, so the generation it just bred is drawn at once.
 from __future__ import annotations
 
 from collections import OrderedDict
-from collections.abc import Hashable
+from collections.abc import Callable, Hashable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-__all__ = ["MotionLog"]
+__all__ = ["MotionLog", "recall"]
 
 
 @dataclass(eq=False)
@@ -41,3 +41,20 @@ class MotionLog:
     def get(self, key: Hashable) -> Any | None:
         """The motion kept under ``key``, or None."""
         return self._motion.get(key)
+
+
+def recall(
+    log: MotionLog | None,
+    hz: float,
+    keys: Sequence[Hashable],
+    simulate: Callable[[list[int]], Sequence[Any]],
+) -> list[Any]:
+    """Each genome's motion at ``hz``: the log's where it kept that genome at that rate, else
+    what ``simulate(rows)`` records for the rows it lacks (in their order)."""
+    kept = log if log is not None and log.hz == hz else None
+    motion = [None if kept is None else kept.get(key) for key in keys]
+    missing = [row for row, found in enumerate(motion) if found is None]
+    if missing:
+        for row, found in zip(missing, simulate(missing), strict=True):
+            motion[row] = found
+    return motion

@@ -18,7 +18,6 @@ from pathlib import Path
 from starlette.concurrency import run_in_threadpool
 from starlette.responses import FileResponse
 
-from sinews.files import atomic_path
 from sinews.render import contact_sheet, render
 from sinews.store import Individual
 from sinews.studio.motion import StageDancer
@@ -35,7 +34,6 @@ __all__ = [
     "sheet_name",
     "write_dancer",
     "write_sheet",
-    "write_text",
 ]
 
 GIF_SECONDS = 20.0
@@ -85,13 +83,6 @@ async def kept_file(
         lambda s: s.store.add_media(run_id, path, kind=kind, individual_id=individual_id)
     )
     return FileResponse(path, media_type=MEDIA_TYPES[kind], filename=name)
-
-
-def write_text(path: Path, text: str) -> Path:
-    """Write ``text`` to ``path`` atomically."""
-    with atomic_path(path) as tmp:
-        tmp.write_text(text, encoding="utf-8")
-    return path
 
 
 def export_name(dancer: StageDancer, kind: str) -> str:

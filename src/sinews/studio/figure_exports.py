@@ -6,7 +6,7 @@ the CLI hand out the same files: the genome as ``sinews runs best`` writes
 it (`sinews.experiments.run_files.genome_file`), the figure as ``sinews
 render RUN --individual ID`` draws it (`RunKind.replay`, then
 `sinews.render.replays.draw_replays`: a 3D figure through MuJoCo's
-renderer), the plot as ``sinews plot`` (`sinews.experiments.run_files.plot_run`).
+renderer), the plot as ``sinews plot`` (`sinews.experiments.run_files.fitness_plot`).
 Files are kept in the studio's export folder and the run's media
 (`sinews.studio.exports.kept_file`) under names the server makes from ids
 and a digest of what they show, and reused when asked again.
@@ -24,9 +24,10 @@ from starlette.responses import Response
 from starlette.routing import BaseRoute, Route
 
 from sinews.experiments.run_files import fitness_plot, genome_file
+from sinews.files import write_text
 from sinews.render.replays import draw_replays
 from sinews.store import Individual, RunInfo, StoreError
-from sinews.studio.exports import kept_file, write_text
+from sinews.studio.exports import kept_file
 from sinews.studio.figure_runs import FigureRun
 from sinews.studio.service import Studio, Worker
 from sinews.studio.validate import RequestError, parse_whole

@@ -30,7 +30,7 @@ from sinews.experiments.evolution import (
     record_picks,
 )
 from sinews.experiments.figures import dance_seconds, dance_song
-from sinews.experiments.gp.score import GPScorer
+from sinews.experiments.gp.score import GPScorer, motion_records
 from sinews.experiments.gp.settings import GPSettings, Runtime
 from sinews.experiments.gp.simulate import measure_programs
 from sinews.experiments.kinds import (
@@ -40,7 +40,7 @@ from sinews.experiments.kinds import (
     check_strategy,
     run_of,
 )
-from sinews.experiments.motion_log import MotionLog
+from sinews.experiments.motion_log import MotionLog, recall
 from sinews.experiments.run_config import ConfigError, EvolutionConfig, build_config
 from sinews.figures.tasks import Task, make_task
 from sinews.limits import check_number
@@ -255,18 +255,14 @@ class GPKind:
         if not individuals:
             return []
         settings = _settings(store.run(run_of(individuals)))
-        kept = log if log is not None and log.hz == record_hz else None
-        motion: list[Any] = [None if kept is None else kept.get(ind.genome) for ind in individuals]
-        missing = [k for k, m in enumerate(motion) if m is None]
-        if missing:
-            programs = settings.parse([individuals[k].genome for k in missing])
-            done = measure_programs(settings, programs, Runtime(record_hz=record_hz), record=True)
-            for j, k in enumerate(missing):
-                motion[k] = (
-                    done.result.trajectory(j),
-                    done.terms[j],
-                    float(done.result.distance[j]),
-                )
+        genomes = [ind.genome for ind in individuals]
+
+        def simulate(rows: list[int]) -> Sequence[Any]:
+            programs = settings.parse([genomes[k] for k in rows])
+            runtime = Runtime(record_hz=record_hz)
+            return motion_records(measure_programs(settings, programs, runtime, record=True))
+
+        motion = recall(log, record_hz, genomes, simulate)
         scene = scene_of(settings.task)
         names = list(settings.task.weights)
         replays = []

@@ -18,29 +18,39 @@ import numpy.typing as npt
 from sinews.evolve import Evaluator, SerialEvaluator
 from sinews.experiments.evolution import Scores
 from sinews.experiments.gp.settings import GPSettings, Runtime
-from sinews.experiments.gp.simulate import measure_programs
+from sinews.experiments.gp.simulate import Measured, measure_programs
 from sinews.experiments.motion_log import MotionLog
 from sinews.experiments.score_memory import ChunkContext, ScoreMemory, logged, score_in_chunks
+from sinews.trajectory import Trajectory
 
 __all__ = [
     "GPScorer",
+    "motion_records",
     "score_chunk",
 ]
 
+FloatArray = npt.NDArray[np.float64]
+
 
 def score_chunk(context: ChunkContext[GPSettings], texts: Sequence[str]) -> Scores:
-    """The evaluator's work unit: simulate a chunk of stored programs and measure their terms."""
-    settings = context.settings
-    if context.record_hz is None:
-        done = measure_programs(settings, settings.parse(texts), Runtime(nthread=context.nthread))
+    """The evaluator's work unit: simulate a chunk of stored programs and measure their terms
+    (and record their motion when the context asks)."""
+    settings, hz = context.settings, context.record_hz
+    programs = settings.parse(texts)
+    if hz is None:
+        done = measure_programs(settings, programs, Runtime(nthread=context.nthread))
         return Scores(terms=done.terms, failed=done.failed.copy())
-    runtime = Runtime(nthread=context.nthread, record_hz=context.record_hz)
-    done = measure_programs(settings, settings.parse(texts), runtime, record=True)
-    motion = tuple(
+    runtime = Runtime(nthread=context.nthread, record_hz=hz)
+    done = measure_programs(settings, programs, runtime, record=True)
+    return Scores(terms=done.terms, failed=done.failed.copy(), motion=motion_records(done))
+
+
+def motion_records(done: Measured) -> tuple[tuple[Trajectory, FloatArray, float], ...]:
+    """Each program's (trajectory, (K,) terms, distance) from a recorded `measure_programs`."""
+    return tuple(
         (done.result.trajectory(k), done.terms[k].copy(), float(done.result.distance[k]))
-        for k in range(len(texts))
+        for k in range(len(done.terms))
     )
-    return Scores(terms=done.terms, failed=done.failed.copy(), motion=motion)
 
 
 @dataclass(eq=False)

@@ -40,10 +40,10 @@ from sinews.experiments.kinds import (
     check_strategy,
     run_of,
 )
-from sinews.experiments.motion_log import MotionLog
+from sinews.experiments.motion_log import MotionLog, recall
 from sinews.experiments.run_config import EvolutionConfig, build_config
 from sinews.experiments.springnet.dance import DANCE_FIGURES
-from sinews.experiments.springnet.score import SpringNetScorer
+from sinews.experiments.springnet.score import SpringNetScorer, motion_records
 from sinews.experiments.springnet.settings import TERMS, SpringNetSettings
 from sinews.experiments.springnet.simulate import simulate
 from sinews.figures.tasks import make_task
@@ -216,14 +216,13 @@ class SpringNetKind:
             return []
         settings = _settings(store.run(run_of(individuals)))
         genes = np.stack([np.asarray(ind.genome, dtype=np.float64) for ind in individuals])
-        kept = log if log is not None and log.hz == record_hz else None
-        motion: list[Any] = [None if kept is None else kept.get(row.tobytes()) for row in genes]
-        missing = [k for k, m in enumerate(motion) if m is None]
-        if missing:
-            result, net = simulate(settings, genes[missing], record_hz=record_hz)
+
+        def simulated(rows: list[int]) -> Sequence[Any]:
+            result, net = simulate(settings, genes[rows], record_hz=record_hz)
             assert net is not None
-            for j, k in enumerate(missing):
-                motion[k] = (result.trajectory(j), float(result.distance[j]), net[:, j])
+            return motion_records(result, net)
+
+        motion = recall(log, record_hz, [row.tobytes() for row in genes], simulated)
         nets = settings.encoding.decode(genes[:, : settings.encoding.size])
         figure = make_figure(settings.figure)
         outputs = np.arange(figure.n_actuators) % settings.masses

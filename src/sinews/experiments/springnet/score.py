@@ -21,9 +21,11 @@ from sinews.experiments.motion_log import MotionLog
 from sinews.experiments.score_memory import ChunkContext, ScoreMemory, logged, score_in_chunks
 from sinews.experiments.springnet.settings import SpringNetSettings
 from sinews.experiments.springnet.simulate import simulate
+from sinews.figures import RolloutResult
 from sinews.figures.terms import TaskMeter
+from sinews.trajectory import Trajectory
 
-__all__ = ["SpringNetScorer", "score_chunk"]
+__all__ = ["SpringNetScorer", "motion_records", "score_chunk"]
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -43,11 +45,18 @@ def score_chunk(context: ChunkContext[SpringNetSettings], genes: FloatArray) -> 
     result, net = simulate(settings, genes, record_hz=context.record_hz,
                            nthread=context.nthread, observer=meter)  # fmt: skip
     terms = distance_travelled(result)[:, None] if meter is None else meter.terms()
-    motion = () if net is None else tuple(
-        (result.trajectory(k), float(result.distance[k]), net[:, k].copy())
-        for k in range(len(genes))
-    )  # fmt: skip
+    motion = () if net is None else motion_records(result, net)
     return Scores(terms=terms, failed=result.failed.copy(), motion=motion)
+
+
+def motion_records(
+    result: RolloutResult, net: FloatArray
+) -> tuple[tuple[Trajectory, float, FloatArray], ...]:
+    """Each net's (trajectory, distance, (T, n) mass positions) from a recorded `simulate`."""
+    return tuple(
+        (result.trajectory(k), float(result.distance[k]), net[:, k].copy())
+        for k in range(result.distance.shape[0])
+    )
 
 
 @dataclass(eq=False)
