@@ -103,6 +103,7 @@ CASES = [
     ["evolve", "snake", "--controller", "gp", "--db", "r.db"],
     ["evolve", "dancers", "--song", "ok.wav", "--strategy", "gp", "--db", "r.db"],
     ["evolve", "luxo", "--controller", "gp", "--strategy", "alton", "--db", "r.db"],
+    ["evolve", "luxo3d", "--controller", "springnet", "--db", "r.db"],
     ["evolve", "dancers", "--song", "ok.wav", "--generations", "10" * 7, "--db", "r.db"],
     ["score", "trunc.npz", "--song", "ok.wav"],
     ["score", "flip.npz", "--song", "ok.wav"],
