@@ -9,8 +9,9 @@ import time
 import webbrowser
 from collections.abc import Callable, Sequence
 
+from sinews.dancers.warmup import Warmup
 from sinews.errors import SinewsError, missing_extra
-from sinews.studio.service import StudioSettings, Worker
+from sinews.studio.service import Studio, StudioSettings, Worker
 
 __all__ = ["LOOPBACK", "serve"]
 
@@ -58,16 +59,23 @@ def serve(
               f"Requests must name one of these hosts: {names} (add more with --allow-host)",
               file=sys.stderr)  # fmt: skip
     listener = _bind(host, port)
+    warmup = Warmup()  # compiles the dance kernels on the other core while the run opens
     worker = Worker(settings)
     try:
         run_id = worker.call(lambda s: s.start())
     except BaseException:
+        warmup.stop()
         worker.close()
         listener.close()
         raise
-    # simulate the first generation (compiling the kernels on a first start) while the
-    # browser opens: the page's first request then finds it ready or nearly so
-    worker.submit(lambda s: s.motion.generation(run_id, s.runs.get(run_id).last))
+
+    def first_generation(studio: Studio) -> None:
+        warmup.wait()
+        studio.motion.generation(run_id, studio.runs.get(run_id).last)
+
+    # simulate the first generation while the browser opens: the page's first request
+    # then finds it ready or nearly so
+    worker.submit(first_generation)
     bound = listener.getsockname()[1]
     url = f"http://{'localhost' if host == '::1' else host}:{bound}/"
     config = uvicorn.Config(
@@ -82,7 +90,10 @@ def serve(
     sys.stdout.flush()
     if open_browser:
         threading.Thread(target=_open_when_up, args=(server, url), daemon=True).start()
-    server.run(sockets=[listener])
+    try:
+        server.run(sockets=[listener])
+    finally:
+        warmup.stop()
 
 
 def _bind(host: str, port: int) -> socket.socket:
