@@ -91,30 +91,32 @@ def sensors_for(task: Task, **columns: list[float]) -> np.ndarray:
 
 
 def test_terms_of_a_hand_made_motion(hop: Task) -> None:
-    """Two lamps over 5 s at 10 observations/s: one arrives at 2 s then wobbles, one never moves."""
-    meter = TaskMeter(hop, 2)
-    targets = np.zeros((2, 3))
+    """Three lamps over 5 s at 10 observations/s: one arrives at 2 s then wobbles, one never
+    moves, one passes the X at 1 s and stops 0.3 m beyond it."""
+    meter = TaskMeter(hop, 3)
+    targets = np.zeros((3, 3))
     for k in range(51):
         t = k / 10
         x = min(t / 2, 1.0) * 1.5 + (0.01 * (-1) ** k if t > 2 else 0.0)
         sensors = sensors_for(
             hop,
-            time=[t, t],
-            root_x=[x, 0.0],
-            root_pitch=[1.2 if 1.0 <= t < 1.5 else 0.0, 0.0],  # fallen for 5 observations
-            fz_head=[3.0 if k < 10 else 0.0, 0.0],  # head down for 10
-            q_neck=[0.4, 0.0],
+            time=[t, t, t],
+            root_x=[x, 0.0, min(t, 1.2) * 1.5],
+            root_pitch=[1.2 if 1.0 <= t < 1.5 else 0.0, 0.0, 0.0],  # fallen for 5 observations
+            fz_head=[3.0 if k < 10 else 0.0, 0.0, 0.0],  # head down for 10
+            q_neck=[0.4, 0.0, 0.0],
         )
         meter(t, sensors, targets)
     terms = dict(zip(hop.weights, meter.terms().T, strict=True))
     assert meter.observations == 51
-    np.testing.assert_allclose(terms["distance"], [-0.01, -1.5])
-    np.testing.assert_allclose(terms["early"], [1 - 2.0 / 5.0, 0.0])
-    np.testing.assert_allclose(terms["still"], [-(0.01 + 29 * 0.02), 0.0])  # 30 moves after arrival
-    np.testing.assert_allclose(terms["head"], [-10 / 51, 0.0])
-    np.testing.assert_allclose(terms["fallen"], [-5 / 51, 0.0])
-    np.testing.assert_allclose(terms["neutral"], [-0.4 / 3, 0.0])
-    np.testing.assert_allclose(terms["energy"], [0.0, 0.0])
+    np.testing.assert_allclose(terms["distance"], [-0.01, -1.5, -0.3], atol=1e-12)
+    np.testing.assert_allclose(terms["early"], [1 - 2.0 / 5.0, 0.0, 0.0])  # passing is not arriving
+    moves = 0.01 + 29 * 0.02  # 30 moves after arrival
+    np.testing.assert_allclose(terms["still"], [-moves, 0.0, -0.3], atol=1e-12)
+    np.testing.assert_allclose(terms["head"], [-10 / 51, 0.0, 0.0])
+    np.testing.assert_allclose(terms["fallen"], [-5 / 51, 0.0, 0.0])
+    np.testing.assert_allclose(terms["neutral"], [-0.4 / 3, 0.0, 0.0])
+    np.testing.assert_allclose(terms["energy"], [0.0, 0.0, 0.0])
 
 
 def test_a_lamp_on_its_arm_is_down_even_upright_enough(hop: Task) -> None:

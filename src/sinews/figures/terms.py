@@ -13,8 +13,12 @@ The terms (`TERMS`), each **higher is better** (penalties are ≤ 0), as
   wave, minus how far the last seconds fall short of the wave, m (the
   missing amplitude at the wave's rate plus the mean depth below the
   required height).
-- ``early``: 1 − (time of first arrival within ``goal.radius``) / duration;
-  0 if it never arrives. "Bonus for completing the motion early."
+- ``early``: 1 − (time from which the tracked point stays within
+  ``goal.radius`` to the end) / duration; 0 if it does not end there. "Bonus
+  for completing the motion early": a hand that passes through the target
+  early and leaves it has not completed the motion. (Counting the first pass,
+  the best of a 250 × 30 touch run at full weight was a hand that ended 9.7 cm
+  from the point, against 3.4 cm for its last generation's best.)
 - ``still``: minus the path length of the tracked point after it first
   arrived, m. "Penalty for excess movement after the goal was met."
 - ``head``: minus the fraction of ticks with any contact on a head body.
@@ -104,7 +108,8 @@ class TaskMeter:
         self._wave_count = 0
         self._count = 0
         self._last_t = 0.0
-        self._arrival = np.full(n, np.inf)
+        self._arrival = np.full(n, np.inf)  # first time within the goal's radius
+        self._settled = np.full(n, np.inf)  # since when it has stayed within it
         self._path = np.zeros(n)
         self._previous = np.zeros((n, len(self._tracked)))
         self._distance = np.zeros(n)
@@ -133,9 +138,9 @@ class TaskMeter:
             self._distance = np.linalg.norm(point - goal, axis=1)
         arrived = np.isfinite(self._arrival)
         self._path += np.where(arrived, np.linalg.norm(point - self._previous, axis=1), 0.0)
-        self._arrival = np.where(
-            ~arrived & (self._distance <= self.task.goal.radius), t, self._arrival
-        )
+        inside = self._distance <= self.task.goal.radius
+        self._arrival = np.where(~arrived & inside, t, self._arrival)
+        self._settled = np.where(inside, np.minimum(self._settled, t), np.inf)
         self._previous = point
         self._head_ticks += _touching(sensors, self._head)
         self._touch_ticks += _touching(sensors, self._touch)
@@ -192,7 +197,7 @@ class TaskMeter:
             raise FigureError("the meter has observed nothing: pass it as the rollout's observer")
         n = self._count
         duration = self._last_t if self._last_t > 0 else 1.0
-        early = np.where(np.isfinite(self._arrival), 1.0 - self._arrival / duration, 0.0)
+        early = np.where(np.isfinite(self._settled), 1.0 - self._settled / duration, 0.0)
         values = {
             "distance": -self._distance,
             "early": early,
