@@ -238,7 +238,7 @@ class SpringNetKind:
                 individual=ind,
                 trajectory=trajectory,
                 title=f"{figure.name}, generation {ind.generation} #{ind.index}",
-                summary=f"{abs(distance):.3f} m",
+                summary=_summary(settings, ind, distance),
                 distance=distance,
                 audio=None if settings.song_path is None else Path(settings.song_path),
                 figure=figure,
@@ -274,6 +274,13 @@ class SpringNetKind:
 
 KIND = SpringNetKind()
 """The spring-net kind (registered in `sinews.experiments.kinds.BUILT_IN`)."""
+
+
+def _summary(settings: SpringNetSettings, individual: Individual, distance: float) -> str:
+    """What the CLI says of a replayed net: a dance's beat lift (as scored), or the distance."""
+    if settings.dance is None:
+        return f"{abs(distance):.3f} m"
+    return f"beat lift {float((individual.terms or {}).get('lift') or 0.0):.3f}"
 
 
 def _genomes(settings: SpringNetSettings) -> GenomeSpace:
