@@ -19,6 +19,7 @@ pytest.importorskip("mujoco")
 from dance_helpers import click_song
 from gp_helpers import stored
 from killed_runs import kill_when, sinews_command, stored_generations
+from render_helpers import decode_audio, probe
 from sinews.experiments.gp.run import TASKS
 from sinews.experiments.run_files import fitness_plot
 from sinews.experiments.springnet.dance import DANCE_FIGURES
@@ -124,6 +125,19 @@ def contents(db: Path) -> tuple[str, list[Any], list[bytes]]:
     rows = [(ind.genome.tobytes() if isinstance(ind.genome, np.ndarray) else ind.genome,
              replace(ind, genome=None)) for ind in individuals]  # fmt: skip
     return status, rows, checkpoints
+
+
+@pytest.mark.parametrize("dance", [("gp", "luxo3d"), ("springnet", "snake")], indirect=True,
+                         ids="-".join)  # fmt: skip
+def test_a_dance_renders_with_its_song(folder: Path, dance: tuple[str, str, Path]) -> None:
+    controller, figure, db = dance
+    video = folder / f"{controller}-{figure}.mp4"
+    done = sinews("render", "1", "--best", "-o", str(video), "--size", "160", "--db", str(db))
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert "beat lift" in done.stdout
+    sound = decode_audio(video, rate=8000)
+    assert "Audio: aac" in probe(video) and len(sound) == pytest.approx(8000, rel=0.05)  # 1 s
+    assert np.abs(sound).max() > 0.1  # the song, not silence
 
 
 @pytest.mark.parametrize(
