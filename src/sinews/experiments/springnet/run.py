@@ -226,10 +226,8 @@ class SpringNetKind:
         motion = recall(log, record_hz, [row.tobytes() for row in genes], simulated)
         nets = settings.encoding.decode(genes[:, : settings.encoding.size])
         figure = make_figure(settings.figure)
-        outputs, labels = (
-            settings.outputs(figure),
-            [figure.joints[a] for a in settings.driven(figure)],
-        )
+        outputs = settings.outputs(figure)
+        labels = [figure.joints[a] for a in settings.driven(figure)]
         replays = []
         for k, (ind, (trajectory, distance, positions)) in enumerate(
             zip(individuals, motion, strict=True)
