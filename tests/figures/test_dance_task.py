@@ -9,21 +9,55 @@ pytest.importorskip("mujoco")
 
 from sinews.control.music_input import MUSIC_TERMINALS
 from sinews.figures import FigureError
-from sinews.figures.tasks import TaskMeter, luxo_dance
+from sinews.figures.tasks import DANCE_STYLE, TASKS, TaskMeter, luxo_dance, make_task
 
 BEATS = np.arange(0.25, 4.0, 0.5)
 HZ = 100
 
 
-def test_the_dance_hears_the_music_after_the_sensors() -> None:
-    task = luxo_dance()
-    assert next(iter(task.weights)) == "lift"
+DANCES = sorted(name for name in TASKS if name.endswith("-dance"))
+
+
+def test_every_figure_dances() -> None:
+    assert DANCES == ["humanoid-dance", "humanoid3d-dance", "luxo-dance", "luxo3d-dance",
+                      "snake-dance"]  # fmt: skip
+
+
+@pytest.mark.parametrize("name", DANCES)
+def test_the_dance_hears_the_music_after_the_sensors(name: str) -> None:
+    task = make_task(name, seconds=2.0)
+    assert task.seconds == 2.0 and next(iter(task.weights)) == "lift"
     assert task.terminals[-len(MUSIC_TERMINALS) :] == MUSIC_TERMINALS
     weights, offset = task.input_map()
     n = task.figure.n_sensors
     assert weights.shape == (n + len(MUSIC_TERMINALS), len(task.terminals))
     assert np.array_equal(weights[n:, -len(MUSIC_TERMINALS) :], np.eye(len(MUSIC_TERMINALS)))
     assert not weights[n:, : -len(MUSIC_TERMINALS)].any() and not offset.any()
+
+
+@pytest.mark.parametrize(
+    ("name", "joints", "spot", "weights"),
+    [
+        ("luxo-dance", ("base_hinge", "elbow", "neck"), ("root_x",), DANCE_STYLE),
+        ("luxo3d-dance", ("base_hinge", "elbow", "neck"), ("root_x", "root_y"), DANCE_STYLE),
+        ("humanoid-dance", ("neck", "shoulder_l", "elbow_l", "shoulder_r", "elbow_r"),
+         ("root_x",), DANCE_STYLE),
+        ("humanoid3d-dance", ("shoulder_x_l", "shoulder_y_l", "shoulder_z_l", "elbow_l",
+                              "shoulder_x_r", "shoulder_y_r", "shoulder_z_r", "elbow_r",
+                              "waist_z", "neck_y", "neck_z"), ("root_x", "root_y"), DANCE_STYLE),
+        ("snake-dance", ("waist", "neck"), ("root_x",),
+         {**DANCE_STYLE, "head": 0.0, "fallen": 0.0}),  # it lies on the floor, head down
+    ],
+)  # fmt: skip
+def test_each_dance_drives_its_joints_and_weighs_its_terms(
+    name: str, joints: tuple[str, ...], spot: tuple[str, ...], weights: dict[str, float]
+) -> None:
+    task = make_task(name)
+    assert task.joints == joints and task.seconds == 10.0
+    assert dict(task.weights) == {"lift": 1.0, **weights}
+    assert task.goal.tracked == spot and task.goal.target == (0.0,) * len(spot)
+    assert {f"q_{j}" for j in joints} <= set(task.sensors)  # it sees what it moves
+    assert "time" in task.sensors and not task.goal.names
 
 
 def test_a_dance_is_not_measured_without_beats() -> None:

@@ -34,8 +34,10 @@ def test_the_page_lists_cli_runs_and_sends_generations_as_pose_packs(
     }
     assert gp["luxo3d"]["hop"] == {"target": [1.0, 0.5], "axes": "xy"}  # the task's default
     assert gp["humanoid3d"]["touch"]["axes"] == "xyz" and gp["humanoid3d"]["gesture"] == {}
-    assert "snake" not in gp and nets["snake"] == {"travel": {}}
-    assert nets["luxo"] == {"travel": {}, "dance": {"song": True}}
+    assert "snake" not in gp
+    assert all(tasks["dance"] == {"song": True} for tasks in gp.values())  # every figure dances
+    assert all(tasks == {"travel": {}, "dance": {"song": True}} for tasks in nets.values())
+    assert list(nets) == ["luxo", "snake", "humanoid"]
     assert [s["id"] for s in session["songs"]] == ["demo-groove", "demo-sway"]
 
     header, arrays = decode_pack(ok(lamp_server, "/api/figures/runs/1/generations/1"))
@@ -247,3 +249,19 @@ def test_a_run_the_cli_is_making_is_read_only_in_the_page_until_the_cli_dies(
         if cli.poll() is None:
             cli.send_signal(signal.SIGINT)
             cli.wait(timeout=120)
+
+
+@pytest.mark.parametrize(
+    ("controller", "figure", "task"),
+    [("springnet", "snake", "dance"), ("gp", "humanoid3d", "humanoid3d-dance")],
+)
+def test_the_form_starts_a_dance_of_a_new_figure(
+    lamp_server: StudioServer, controller: str, figure: str, task: str
+) -> None:
+    form = {"figure": figure, "controller": controller, "task": "dance", "song": "demo-groove",
+            "population": 5, "generations": 1, "seconds": 0.5, "seed": 1}  # fmt: skip
+    run = ok(lamp_server, "/api/figures/runs", form)["id"]
+    done = settled(lamp_server, run)
+    assert done["status"] == "finished" and done["job"]["error"] is None
+    assert (done["kind"], done["figure"], done["task"]) == (controller, figure, task)
+    assert done["song"]["id"] == "demo-groove"

@@ -15,10 +15,21 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from sinews.control.music_input import MUSIC_TERMINALS
 from sinews.figures._mujoco import require_mujoco
 from sinews.figures.figure import Figure, FigureError
 
-__all__ = ["MAIN_GOALS", "STYLE", "TERMS", "Goal", "Task", "Wave", "standing_height"]
+__all__ = [
+    "DANCE_STYLE",
+    "MAIN_GOALS",
+    "STYLE",
+    "TERMS",
+    "Goal",
+    "Task",
+    "Wave",
+    "dance_task",
+    "standing_height",
+]
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -32,6 +43,9 @@ MAIN_GOALS = ("distance", "lift")
 
 STYLE = {"early": 0.2, "still": 0.5, "head": 3.0, "fallen": 2.0, "neutral": 0.1, "energy": 0.0}
 """Full style weights of the built-in tasks (the main goal ``distance`` weighs 1)."""
+DANCE_STYLE = {"head": 3.0, "fallen": 2.0, "spot": 0.3, "joints": 0.3, "smooth": 0.3}
+"""Full style weights of a dance (the main goal ``lift`` weighs 1): stay upright, near the
+spot, use every driven joint, move smoothly."""
 
 
 def standing_height(figure: Figure) -> float:
@@ -207,3 +221,36 @@ class Task:
             else:
                 offset[first + axis] = float(target)
         return weights, offset
+
+
+def dance_task(
+    name: str,
+    figure: Figure,
+    joints: tuple[str, ...],
+    sensors: tuple[str, ...],
+    *,
+    spot: tuple[str, ...],
+    seconds: float,
+    style: Mapping[str, float] = DANCE_STYLE,
+    max_tilt: float = 1.0,
+    min_height: float = -math.inf,
+) -> Task:
+    """A dance of ``figure`` to the song: its ``joints``' motion must pause on the beats
+    (``lift``), with ``style`` points (`DANCE_STYLE` unless a figure needs others, e.g. a
+    snake that lies on the floor: no ``head`` or ``fallen``).
+
+    The controller hears the song (`MUSIC_TERMINALS`) beside ``sensors``; ``spot``, the
+    root's position columns (one per floor axis), must stay near their start, 0.
+    """
+    return Task(
+        name=name,
+        figure=figure,
+        goal=Goal(tracked=spot, target=(0.0,) * len(spot), names=(), radius=0.1),
+        joints=joints,
+        sensors=sensors,
+        weights={"lift": 1.0, **style},
+        seconds=seconds,
+        max_tilt=max_tilt,
+        min_height=min_height,
+        music=MUSIC_TERMINALS,
+    )

@@ -1,4 +1,5 @@
-"""The 3D figures' motion tasks, as data (seed 003 in 3D): hop, limbo, point, wave, touch, nose.
+"""The 3D figures' motion tasks, as data (seed 003 in 3D): hop, limbo, point, wave, touch, nose,
+dance.
 
 Each builder returns a `sinews.figures.tasks.Task` like the planar ones: the
 figure with its scene (a target is a **site in the world**, drawn by the
@@ -27,21 +28,25 @@ from sinews.figures.figure import Figure, FigureError
 from sinews.figures.humanoid3d import humanoid3d
 from sinews.figures.luxo3d import luxo3d
 from sinews.figures.mjcf import fmt
-from sinews.figures.task import STYLE, Goal, Task, Wave, standing_height
+from sinews.figures.task import STYLE, Goal, Task, Wave, dance_task, standing_height
 
 __all__ = [
+    "ARM_L",
     "ARM_R",
+    "HUMANOID3D_DANCE",
     "LUXO3D_SENSORS",
     "TASKS_3D",
+    "humanoid3d_dance",
     "humanoid3d_gesture",
     "humanoid3d_nose",
     "humanoid3d_point",
     "humanoid3d_touch",
+    "luxo3d_dance",
     "luxo3d_hop",
     "luxo3d_limbo",
 ]
 
-LUXO3D_SENSORS = (
+LUXO3D_BODY = (
     "time",
     "q_base_hinge",
     "q_elbow",
@@ -53,13 +58,15 @@ LUXO3D_SENSORS = (
     "root_lean_f",
     "root_lean_l",
     "fz_base",
-    "f_target",
-    "l_target",
 )
-"""The 3D lamp's terminals (besides the constants)."""
+"""What the 3D lamp senses of itself."""
+LUXO3D_SENSORS = (*LUXO3D_BODY, "f_target", "l_target")
+"""The 3D lamp's terminals (besides the constants): itself and the target."""
 
 ARM_R = ("shoulder_x_r", "shoulder_y_r", "shoulder_z_r", "elbow_r")
 """The right arm's four hinges."""
+ARM_L = ("shoulder_x_l", "shoulder_y_l", "shoulder_z_l", "elbow_l")
+"""The left arm's four hinges."""
 
 TARGET_RGBA = "0.85 0.15 0.15 1"
 
@@ -168,6 +175,13 @@ def luxo3d_limbo(
     weights = {"distance": 1.0, **STYLE, "touch": 5.0}
     params = {"pole_height": pole_height, "target": [x, y]}
     return _lamp_task("luxo3d-limbo", figure, (x, y), weights, seconds, params)
+
+
+def luxo3d_dance(*, seconds: float = 10.0) -> Task:
+    """Dance to the song with the three joints (`sinews.figures.task.dance_task`), near the
+    spot on the floor (x, y); the lamp senses itself (`LUXO3D_BODY`) and hears the song."""
+    return dance_task("luxo3d-dance", luxo3d(), ("base_hinge", "elbow", "neck"), LUXO3D_BODY,
+                      spot=("root_x", "root_y"), seconds=seconds)  # fmt: skip
 
 
 def _refigure(
@@ -302,12 +316,30 @@ def humanoid3d_nose(*, seconds: float = 3.0) -> Task:
                         seconds, {})  # fmt: skip
 
 
+HUMANOID3D_DANCE = (*ARM_L, *ARM_R, "waist_z", "neck_y", "neck_z")
+"""The 3D humanoid's dancing joints: both arms, the waist's turn and the neck (11); the legs
+and the waist's bends hold the standing pose."""
+
+
+def humanoid3d_dance(*, seconds: float = 10.0) -> Task:
+    """Dance with the arms, the waist's turn and the neck (`HUMANOID3D_DANCE`) on the spot
+    (x, y); down as in the other tasks. It sees the driven angles, how the pelvis leans,
+    both feet's floor forces, and hears the song."""
+    sensors = ("time", *(f"q_{j}" for j in HUMANOID3D_DANCE), "root_lean_f", "root_lean_l",
+               "fz_foot_l", "fz_foot_r")  # fmt: skip
+    return dance_task("humanoid3d-dance", _person(), HUMANOID3D_DANCE, sensors,
+                      spot=("root_x", "root_y"), seconds=seconds, max_tilt=0.5,
+                      min_height=-0.25)  # fmt: skip
+
+
 TASKS_3D: Mapping[str, Callable[..., Task]] = {
     "luxo3d-hop": luxo3d_hop,
     "luxo3d-limbo": luxo3d_limbo,
+    "luxo3d-dance": luxo3d_dance,
     "humanoid3d-point": humanoid3d_point,
     "humanoid3d-gesture": humanoid3d_gesture,
     "humanoid3d-touch": humanoid3d_touch,
     "humanoid3d-nose": humanoid3d_nose,
+    "humanoid3d-dance": humanoid3d_dance,
 }
 """The 3D tasks by name (`sinews.figures.tasks.TASKS` holds them too)."""

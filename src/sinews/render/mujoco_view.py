@@ -424,11 +424,12 @@ def render_recordings_3d(
     fps: float,
     width: int = 640,
     shadows: bool | None = None,
+    audio: str | os.PathLike[str] | None = None,
 ) -> Path:
     """Stored runs' replays: ``.mp4`` plays the recordings one after another (e.g. each
-    generation's best: the camera starts afresh on each), ``.png`` is a strobe of one.
-    Shadows (None: on for one recording, off for several, where they would triple the
-    time of a learning video).
+    generation's best: the camera starts afresh on each), with ``audio`` (a dance's song,
+    from its start) if given; ``.png`` is a strobe of one. Shadows (None: on for one
+    recording, off for several, where they would triple the time of a learning video).
 
     Args:
         model: the task's model (its figure with the scene).
@@ -456,7 +457,8 @@ def render_recordings_3d(
 
     shade = len(frames) == 1 if shadows is None else shadows
     with MujocoView(model, *size, camera=camera, shadows=shade) as view, atomic_output(path) as tmp:
-        encode_mp4(every_frame(view), tmp, size=size, fps=fps)
+        sound = None if audio is None else Path(audio)
+        encode_mp4(every_frame(view), tmp, size=size, fps=fps, audio=sound)
     return Path(path)
 
 

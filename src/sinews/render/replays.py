@@ -75,16 +75,16 @@ def draw_replays(
         return render(first.trajectory, path, overlay=overlay, size=size, **sound)
     if overlay:
         raise SinewsError("the debug overlay is for spring-mass bodies, not figures")
+    audio = first.audio if _suffix(path) == ".mp4" and len(replays) == 1 else None
     if getattr(first.figure, "root", "planar") == "free":  # 3D: MuJoCo's own renderer
         from sinews.render.mujoco_view import render_recordings_3d
 
         recordings = [r.trajectory.qpos for r in replays if r.trajectory.qpos is not None]
         return render_recordings_3d(first.figure.model(), recordings, path,
-                                    fps=first.trajectory.fps, width=size)  # fmt: skip
+                                    fps=first.trajectory.fps, width=size, audio=audio)  # fmt: skip
     pixels = (size, 3 * size // 4)
     geometry = FigureGeometry.of(first.figure)
     if len(replays) == 1:
-        audio = first.audio if _suffix(path) == ".mp4" else None
         return render_figure(geometry, first.trajectory, path, size=pixels, panel=first.panel,
                              title=first.title, scene=first.scene, audio=audio)  # fmt: skip
     painters = [

@@ -1,10 +1,8 @@
-"""GP dances through the installed ``sinews``: stored with the song's hash, resumed bit for
-bit after SIGKILL, and bad songs refused in one line."""
+"""GP dances: a changed song stops a resume, and bad songs are refused in one line (every
+figure's dance runs, resumed after SIGKILL, in tests/experiments/test_figure_dance_runs.py)."""
 
 from __future__ import annotations
 
-import hashlib
-import subprocess
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -13,10 +11,7 @@ import pytest
 pytest.importorskip("mujoco")
 
 from dance_helpers import click_song
-from gp_helpers import stored
-from killed_runs import kill_when, sinews_command, stored_generations
 from sinews.cli import main
-from sinews.experiments.run_files import fitness_plot
 from sinews.store import RunStore
 
 OPTIONS = ["--controller", "gp", "--task", "dance", "--population", "6", "--generations", "4",
@@ -34,46 +29,15 @@ def folder(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Path]:
         yield where
 
 
-def arguments(folder: Path, db: str) -> list[str]:
-    return ["evolve", "luxo", *OPTIONS, "--song", str(folder / "song.wav"), "--db",
-            str(folder / db)]  # fmt: skip
-
-
 @pytest.fixture(scope="module")
 def whole(folder: Path) -> Path:
-    done = subprocess.run([*sinews_command(), *arguments(folder, "whole.db")],
-                          capture_output=True, text=True, check=False)  # fmt: skip
-    assert done.returncode == 0, done.stderr[-2000:]
-    return folder / "whole.db"
-
-
-def test_a_dance_is_stored_with_its_song_and_rated_by_the_beat(folder: Path, whole: Path) -> None:
-    status, individuals, checkpoints = stored(whole)
-    assert (status, len(individuals), len(checkpoints)) == ("finished", 24, 4)
-    with RunStore(whole) as store:
-        (info,) = store.runs()
-    song = folder / "song.wav"
-    assert info.kind == "gp-luxo" and info.config["task"] == "luxo-dance"
-    assert info.song_hash == hashlib.sha256(song.read_bytes()).hexdigest()
-    assert info.song_path == str(song.resolve())
-    assert {"sin", "cos"} <= set(info.config["functions"])
-    assert list(individuals[0].terms or {}) == ["lift", "head", "fallen", "spot", "joints",
-                                                "smooth"]  # fmt: skip
-    lifts = {round(float((ind.terms or {})["lift"] or 0.0), 6) for ind in individuals}
-    assert len(lifts) > 3  # programs dance differently to the beat
-    with RunStore(whole) as store:
-        plot = fitness_plot(store, info.id)
-    assert plot.title.endswith("\nfitness (beat lift + style)")  # not the hop's distance label
-
-
-def test_a_killed_dance_resumes_to_the_uninterrupted_one(folder: Path, whole: Path) -> None:
-    cut = folder / "cut.db"
-    kill_when(arguments(folder, "cut.db"), cut, 2)
-    assert 2 <= stored_generations(cut) < 4
-    resumed = subprocess.run([*sinews_command(), "runs", "resume", "1", "--db", str(cut)],
-                             capture_output=True, text=True, check=False)  # fmt: skip
-    assert resumed.returncode == 0, resumed.stderr[-2000:]
-    assert stored(cut) == stored(whole)
+    """A finished two-generation dance of the lamp (every figure's dances run in
+    tests/experiments/test_figure_dance_runs.py)."""
+    db = folder / "whole.db"
+    arguments = ["evolve", "luxo", *OPTIONS, "--generations", "2", "--song",
+                 str(folder / "song.wav"), "--db", str(db)]  # fmt: skip
+    assert main(arguments) == 0
+    return db
 
 
 def test_a_dance_whose_song_changed_is_not_resumed(

@@ -11,13 +11,19 @@ import pytest
 pytest.importorskip("mujoco")
 
 from dance_helpers import click_song
-from sinews.cli import main
 from sinews.control.music_input import MUSIC_TERMINALS
-from sinews.experiments.springnet.dance import DRIVE, DRIVE_FORCE, dominant_period, drive_weights
+from sinews.experiments.figures import make_figure
+from sinews.experiments.springnet.dance import (
+    DANCE_FIGURES,
+    DRIVE,
+    DRIVE_FORCE,
+    dominant_period,
+    drive_weights,
+)
 from sinews.experiments.springnet.settings import SpringNetSettings
 from sinews.experiments.springnet.simulate import simulate
+from sinews.figures.tasks import make_task
 from sinews.music import analyse_file
-from sinews.store import RunStore
 
 
 @pytest.fixture(scope="module")
@@ -72,17 +78,21 @@ def test_a_driven_net_swings_at_the_beat_and_a_free_one_at_its_own_period(song: 
     assert abs(free / period - 1) > 0.5
 
 
-def test_a_net_dance_runs_and_is_rated_by_the_beat(song: Path, tmp_path: Path) -> None:
-    db = tmp_path / "runs.db"
-    options = ["--controller", "springnet", "--task", "dance", "--song", str(song),
-               "--population", "6", "--generations", "2", "--seconds", "2",
-               "--db", str(db)]  # fmt: skip
-    assert main(["evolve", "luxo", *options]) == 0
-    with RunStore(db) as store:
-        (info,) = store.runs()
-        individuals = store.individuals(info.id)
-    # the float GA that takes picks (without them it is the plain GA, test_evolve_strategies)
-    assert info.config["task"] == "dance" and info.config["strategy"]["name"] == "hybrid"
-    assert info.song_hash == analyse_file(song).song_hash
-    assert next(iter(individuals[0].terms or {})) == "lift"
-    assert len(individuals[0].genome) == SpringNetSettings.from_values(info.config).genome_size
+def test_a_dancing_net_drives_only_the_dances_joints(song: Path) -> None:
+    music = analyse_file(song)
+    settings = SpringNetSettings.from_values({"figure": "humanoid", "seconds": 4.0,
+        "control_hz": 100, "task": "dance", "song_path": str(song),
+        "song_hash": music.song_hash})  # fmt: skip
+    figure = make_figure("humanoid")
+    dance = make_task(DANCE_FIGURES["humanoid"])
+    driven = [figure.joints.index(j) for j in dance.joints]
+    assert settings.masses == len(dance.joints) == 5  # one mass per driven joint
+    assert settings.driven(figure).tolist() == driven
+    genes = np.random.default_rng(4).random((3, settings.genome_size))
+    controller = settings.controller(figure, genes)
+    held = np.setdiff1d(np.arange(figure.n_actuators), driven)
+    assert (controller.gain[driven] > 0).all() and not controller.gain[held].any()
+    assert controller.outputs[driven].tolist() == list(range(5))
+    assert figure.joints[held[0]] == "waist" and held.size == 7  # the waist and the legs
+    result, _ = simulate(settings, genes)
+    assert not result.failed.any()

@@ -61,13 +61,22 @@ __all__ = [
 CONTROLLER = "gp"
 TASKS: dict[str, dict[str, tuple[str, dict[str, Any]]]] = {
     "luxo": {"hop": ("luxo-hop", {}), "limbo": ("luxo-limbo", {}), "dance": ("luxo-dance", {})},
-    "humanoid": {"reach": ("humanoid-reach", {}), "nose": ("humanoid-reach", {"target": "nose"})},
-    "luxo3d": {"hop": ("luxo3d-hop", {}), "limbo": ("luxo3d-limbo", {})},
+    "humanoid": {
+        "reach": ("humanoid-reach", {}),
+        "nose": ("humanoid-reach", {"target": "nose"}),
+        "dance": ("humanoid-dance", {}),
+    },
+    "luxo3d": {
+        "hop": ("luxo3d-hop", {}),
+        "limbo": ("luxo3d-limbo", {}),
+        "dance": ("luxo3d-dance", {}),
+    },
     "humanoid3d": {
         "point": ("humanoid3d-point", {}),
         "gesture": ("humanoid3d-gesture", {}),
         "touch": ("humanoid3d-touch", {}),
         "nose": ("humanoid3d-nose", {}),
+        "dance": ("humanoid3d-dance", {}),
     },
 }
 """Figure → the task names of ``--task`` → the built-in task and its preset options."""
@@ -117,8 +126,8 @@ class GPKind:
     name = CONTROLLER
     subjects = tuple(TASKS)
     options = (
-        KindOption("task", str, "GP: the task, hop, limbo or dance (Luxo), reach or nose "
-                   "(humanoid)."),
+        KindOption("task", str, "GP: the task, hop or limbo (Luxo, 3D too), reach or nose "
+                   "(humanoid), point, gesture, touch or nose (3D humanoid), or dance (each)."),
         KindOption("song", str, "GP dance: the song file, or demo:groove / demo:sway."),
         KindOption("target", str, "GP: where to go: the X, m (Luxo, default 1), or X,Z "
                    "(humanoid)."),

@@ -4,8 +4,8 @@ A dancing net's genes are the net's (`SpringNetEncoding`) followed by one drive 
 per mass and `DRIVE` column, each gene u in [0, 1] a weight ``(2u − 1) · DRIVE_FORCE``.
 Every tick mass i feels ``f_i = Σ_d w_id · music_d`` (the net's input forces, seed 001's
 "applying forces to the point masses"), read from the song's `MUSIC_TERMINALS` after
-the figure's sensors (`MusicInput`). The fitness is the luxo's dance (`luxo_dance`):
-beat lift plus style.
+the figure's sensors (`MusicInput`). The fitness is the figure's dance (`DANCE_FIGURES`,
+e.g. `luxo_dance`): beat lift plus style.
 
 `dominant_period` measures what the issue asks of an entrained net: the period of the
 strongest component of its output masses' motion, to compare with the beat period.
@@ -29,8 +29,9 @@ accelerating away: measured, an evolved net with a bass drive drifted off on 5 o
 songs.)"""
 DRIVE_FORCE = 30.0
 """The largest drive weight (force per unit of music)."""
-DANCE_FIGURES = {"luxo": "luxo-dance"}
-"""Figures whose spring nets can dance, and their dance task."""
+DANCE_FIGURES = {"luxo": "luxo-dance", "snake": "snake-dance", "humanoid": "humanoid-dance"}
+"""Figures whose spring nets can dance, and their dance task (its joints are the ones the
+nets drive; the others hold their neutral angles)."""
 
 
 def drive_weights(genes: FloatArray, n_masses: int, n_sensors: int) -> FloatArray:

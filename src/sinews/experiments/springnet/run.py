@@ -83,12 +83,13 @@ class SpringNetKind:
     subjects = tuple(FIGURES)
     options = (
         KindOption("seconds", float, "Length of each trial (spring nets: default 5 s)."),
-        KindOption("masses", int, "Point masses per spring net (default: 4, or one per joint)."),
+        KindOption("masses", int, "Point masses per spring net (default: 4, or one per driven "
+                   "joint)."),
         KindOption("keep", Path, "Spring nets' hand picks: a file of lines 'GENERATION: INDEX "
                    "INDEX ...' naming individuals that survive that generation whatever their "
                    "rank."),
-        KindOption("task", str, "Spring nets: dance (Luxo; the net entrained by --song), or "
-                   "none for the paper's distance."),
+        KindOption("task", str, "Spring nets: dance (Luxo, snake, humanoid; the net entrained "
+                   "by --song), or none for the paper's distance."),
         KindOption("song", str, "Spring-net dance: the song file, or demo:groove / demo:sway."),
     )  # fmt: skip
     defaults = DEFAULTS
@@ -225,7 +226,8 @@ class SpringNetKind:
         motion = recall(log, record_hz, [row.tobytes() for row in genes], simulated)
         nets = settings.encoding.decode(genes[:, : settings.encoding.size])
         figure = make_figure(settings.figure)
-        outputs = np.arange(figure.n_actuators) % settings.masses
+        outputs = settings.outputs(figure)
+        labels = [figure.joints[a] for a in settings.driven(figure)]
         replays = []
         for k, (ind, (trajectory, distance, positions)) in enumerate(
             zip(individuals, motion, strict=True)
@@ -234,12 +236,12 @@ class SpringNetKind:
                 individual=ind,
                 trajectory=trajectory,
                 title=f"{figure.name}, generation {ind.generation} #{ind.index}",
-                summary=f"{abs(distance):.3f} m",
+                summary=_summary(settings, ind, distance),
                 distance=distance,
                 audio=None if settings.song_path is None else Path(settings.song_path),
                 figure=figure,
                 panel=NetPanel(positions=positions, masses=nets.masses[k],
-                               springs=nets.springs[k], outputs=outputs, labels=figure.joints),
+                               springs=nets.springs[k], outputs=outputs, labels=labels),
             ))  # fmt: skip
         return replays
 
@@ -270,6 +272,13 @@ class SpringNetKind:
 
 KIND = SpringNetKind()
 """The spring-net kind (registered in `sinews.experiments.kinds.BUILT_IN`)."""
+
+
+def _summary(settings: SpringNetSettings, individual: Individual, distance: float) -> str:
+    """What the CLI says of a replayed net: a dance's beat lift (as scored), or the distance."""
+    if settings.dance is None:
+        return f"{abs(distance):.3f} m"
+    return f"beat lift {float((individual.terms or {}).get('lift') or 0.0):.3f}"
 
 
 def _genomes(settings: SpringNetSettings) -> GenomeSpace:

@@ -73,7 +73,9 @@ class SpringNetSettings:
         if figure not in PHYSICS_HZ:
             raise SinewsError(f"spring nets drive the {', '.join(PHYSICS_HZ)}; evolve the "
                               f"{figure} with --controller gp")  # fmt: skip
-        masses = values.get("masses") or max(4, make_figure(figure).n_actuators)
+        dancing = values.get("task") == "dance" and figure in DANCE_FIGURES
+        joints = make_task(DANCE_FIGURES[figure]).joints if dancing else make_figure(figure).joints
+        masses = values.get("masses") or max(4, len(joints))
         settings = cls(
             figure=figure,
             seconds=_number(values.get("seconds"), "seconds"),
@@ -135,18 +137,31 @@ class SpringNetSettings:
         """Where masses, springs and positions sit in a gene vector."""
         return SpringNetEncoding(self.masses)
 
+    def driven(self, figure: Figure) -> npt.NDArray[np.intp]:
+        """(J,) the actuators the nets drive: all, or a dance's joints (the others hold
+        their neutral angles)."""
+        return np.arange(figure.n_actuators) if self.dance is None else self.dance.actuators
+
+    def outputs(self, figure: Figure) -> npt.NDArray[np.intp]:
+        """(J,) the mass each driven actuator follows: the k-th driven one mass k mod n."""
+        return np.arange(len(self.driven(figure))) % self.masses
+
     def controller(self, figure: Figure, genes: FloatArray) -> SpringNetController:
         """The controller of (P, G) genes driving ``figure`` (a dance's reads sensors and
-        music: see `with_music`)."""
+        music: see `with_music`); an actuator it does not drive has gain 0."""
         low, high = figure.joint_range[:, 0], figure.joint_range[:, 1]
-        gain = np.where(np.isfinite(high - low), 0.5 * (high - low), 1.0)
+        driven = self.driven(figure)
+        gain = np.zeros(figure.n_actuators)
+        gain[driven] = np.where(np.isfinite(high - low), 0.5 * (high - low), 1.0)[driven]
+        outputs = np.zeros(figure.n_actuators, dtype=np.intp)
+        outputs[driven] = self.outputs(figure)
         size = self.encoding.size
         drive = None
         if self.task is not None:
             drive = drive_weights(genes[:, size:], self.masses, figure.n_sensors)
         return SpringNetController(
             self.encoding.decode(genes[:, :size]),
-            outputs=np.arange(figure.n_actuators) % self.masses,
+            outputs=outputs,
             gain=gain,
             offset=figure.neutral,
             ts=NET_TIME_STEP,
