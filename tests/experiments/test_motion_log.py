@@ -10,7 +10,8 @@ import pytest
 pytest.importorskip("mujoco")
 
 from sinews.cli import main
-from sinews.experiments.kinds import kind_of
+from sinews.evolve import SerialEvaluator
+from sinews.experiments.kinds import RunKind, kind_of
 from sinews.experiments.motion_log import MotionLog
 from sinews.store import Individual, RunStore
 
@@ -38,11 +39,30 @@ def test_a_pick_logs_the_motion_that_replays_exactly(controller: str, tmp_path: 
         (info,) = store.runs()
         kind = kind_of(info)
         kind.pick(store, info.id, 0, [0, 1], log=log)
-        people = store.individuals(info.id, 1)
-        assert all(log.get(key(p)) is not None for p in people)  # every child was recorded
-        logged = kind.replay(store, people, record_hz=50.0, log=log)
-        fresh = kind.replay(store, people, record_hz=50.0)
-        assert kind.replay(store, people, record_hz=30.0, log=log)[0].trajectory.fps == 30.0
+        assert_replays_from_the_log(kind, store, store.individuals(info.id, 1), log, controller)
+
+
+@pytest.mark.parametrize("controller", ["gp", "springnet"])
+def test_a_run_extended_in_the_background_logs_its_motion(controller: str, tmp_path: Path) -> None:
+    """The studio's background job extends a run one generation at a time with a log."""
+    db = tmp_path / "runs.db"
+    assert main(["evolve", *RUNS[controller], "--seed", "5", "--db", str(db)]) == 0
+    log = MotionLog(50.0)
+    with RunStore(db) as store:
+        (info,) = store.runs()
+        kind = kind_of(info)
+        kind.run(store, info.id, evaluator=SerialEvaluator(), generations=2, log=log)
+        assert_replays_from_the_log(kind, store, store.individuals(info.id, 1), log, controller)
+
+
+def assert_replays_from_the_log(
+    kind: RunKind, store: RunStore, people: list[Individual], log: MotionLog, controller: str
+) -> None:
+    """Every individual's motion is in ``log`` and replays exactly as a fresh simulation."""
+    assert all(log.get(key(p)) is not None for p in people)  # every one was recorded
+    logged = kind.replay(store, people, record_hz=50.0, log=log)
+    fresh = kind.replay(store, people, record_hz=50.0)
+    assert kind.replay(store, people, record_hz=30.0, log=log)[0].trajectory.fps == 30.0
     for a, b in zip(logged, fresh, strict=True):
         assert (a.summary, a.distance, a.title) == (b.summary, b.distance, b.title)
         for name in ("positions", "qpos", "body_pos"):

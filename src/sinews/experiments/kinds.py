@@ -148,8 +148,10 @@ class RunKind(Protocol):
         evaluator: Evaluator,
         generations: int | None = None,
         on_generation: Callable[[GenerationSummary], None] | None = None,
+        log: MotionLog | None = None,
     ) -> None:
-        """Run (or resume, or extend to ``generations``) a run of this kind."""
+        """Run (or resume, or extend to ``generations``) a run of this kind; a figure kind
+        keeps the motion it simulates while scoring in ``log`` (as `pick` does)."""
         ...
 
     def pick(

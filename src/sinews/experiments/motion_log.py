@@ -10,6 +10,7 @@ one log per figure run, so the generation it just bred is drawn at once.
 
 from __future__ import annotations
 
+import threading
 from collections import OrderedDict
 from collections.abc import Callable, Hashable, Sequence
 from dataclasses import dataclass, field
@@ -22,6 +23,9 @@ __all__ = ["MotionLog", "recall"]
 class MotionLog:
     """The last ``capacity`` genomes' recorded motion, by genome key (oldest dropped first).
 
+    Safe to share between threads: the studio's background job writes while its worker
+    thread reads.
+
     Attributes:
         hz: frames per second of the recorded motion.
         capacity: genomes kept.
@@ -30,17 +34,20 @@ class MotionLog:
     hz: float
     capacity: int = 256
     _motion: OrderedDict[Hashable, Any] = field(default_factory=OrderedDict, repr=False)
+    _lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
 
     def put(self, key: Hashable, motion: Any) -> None:
         """Keep ``motion`` (a kind's own record of one genome's rollout) under ``key``."""
-        self._motion[key] = motion
-        self._motion.move_to_end(key)
-        while len(self._motion) > self.capacity:
-            self._motion.popitem(last=False)
+        with self._lock:
+            self._motion[key] = motion
+            self._motion.move_to_end(key)
+            while len(self._motion) > self.capacity:
+                self._motion.popitem(last=False)
 
     def get(self, key: Hashable) -> Any | None:
         """The motion kept under ``key``, or None."""
-        return self._motion.get(key)
+        with self._lock:
+            return self._motion.get(key)
 
 
 def recall(

@@ -6,13 +6,16 @@ extends its run one generation at a time through the run kind
 (`RunKind.run` with ``generations`` = one more), so every generation is stored
 as it is made, a pause takes effect between generations, and a run paused,
 or a studio killed mid-job, is continued by ``sinews runs resume RUN`` or by
-the page exactly as an uninterrupted run would have gone on.
+the page exactly as an uninterrupted run would have gone on. The motion a job
+simulates while scoring goes into the run's motion log, so the page draws the
+generations it made without simulating them again.
 """
 
 from __future__ import annotations
 
 import logging
 import threading
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -20,6 +23,7 @@ from typing import Any
 from sinews.errors import SinewsError
 from sinews.evolve import SerialEvaluator
 from sinews.experiments.kinds import kind_of
+from sinews.experiments.motion_log import MotionLog
 from sinews.store import RunStore
 
 __all__ = ["FigureJobs", "Job"]
@@ -58,10 +62,12 @@ class FigureJobs:
 
     Args:
         db: the run database.
+        logs: the motion log of a run (`FigureRuns.motion_log`).
     """
 
-    def __init__(self, db: Path) -> None:
+    def __init__(self, db: Path, logs: Callable[[int], MotionLog]) -> None:
         self.db = db
+        self._logs = logs
         self._lock = threading.Lock()
         self._jobs: dict[int, Job] = {}
         self._thread: threading.Thread | None = None
@@ -115,8 +121,10 @@ class FigureJobs:
             with RunStore(self.db) as store:
                 kind = kind_of(store.run(job.run_id))
                 evaluator = SerialEvaluator()
+                log = self._logs(job.run_id)
                 while not job.pausing and job.done < job.target:
-                    kind.run(store, job.run_id, evaluator=evaluator, generations=job.done + 1)
+                    kind.run(store, job.run_id, evaluator=evaluator, generations=job.done + 1,
+                             log=log)  # fmt: skip
                     done = store.last_generation(job.run_id) + 1
                     if done == job.done:  # the run's own rule ended it (GP's --until)
                         break

@@ -69,7 +69,7 @@ class Studio:
         self.motion = Motion(self.runs)
         self.figure_runs = FigureRuns(self.store)
         self.figure_motion = FigureMotion(self.figure_runs)
-        self.figure_jobs = FigureJobs(settings.db)
+        self.figure_jobs = FigureJobs(settings.db, self.figure_runs.motion_log)
         self.figure_songs = FigureSongs(self.songs)
         self.exports = settings.data_dir / "exports"
         self.first_run = -1

@@ -117,8 +117,10 @@ class DancerKind:
         evaluator: Evaluator,
         generations: int | None = None,
         on_generation: Callable[[GenerationSummary], None] | None = None,
+        log: MotionLog | None = None,
     ) -> None:
-        """Run (or resume, or extend) a dancer run; one bred by hand stops after generation 0."""
+        """Run (or resume, or extend) a dancer run; one bred by hand stops after generation 0
+        (``log``: unused, as in `pick`)."""
         scorer = _scorer(store.run(run_id), evaluator)
         continue_run(
             store,

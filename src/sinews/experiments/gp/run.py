@@ -209,6 +209,7 @@ class GPKind:
         evaluator: Evaluator,
         generations: int | None = None,
         on_generation: Callable[[GenerationSummary], None] | None = None,
+        log: MotionLog | None = None,
     ) -> None:
         """Run, resume or extend (to ``generations``) a GP run.
 
@@ -220,7 +221,7 @@ class GPKind:
         settings = _settings(info)
         until = info.config.get("until")
         continue_run(
-            store, run_id, scorer=GPScorer(settings, evaluator),
+            store, run_id, scorer=GPScorer(settings, evaluator, log),
             spec=EvolutionConfig.from_dict(info.config).fitness,
             strategies=Strategies(settings.genomes), generations=generations,
             on_generation=on_generation,

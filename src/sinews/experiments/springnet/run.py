@@ -167,10 +167,11 @@ class SpringNetKind:
         evaluator: Evaluator,
         generations: int | None = None,
         on_generation: Callable[[GenerationSummary], None] | None = None,
+        log: MotionLog | None = None,
     ) -> None:
         """Run, resume or extend (to ``generations``) a run; hand picks come from its config."""
         info = store.run(run_id)
-        settings, scorer = _scorer(info, evaluator)
+        settings, scorer = _scorer(info, evaluator, log)
         keep = _keep(info.config.get("keep") or {})
         continue_run(
             store,
