@@ -2,13 +2,16 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from sinews.music import save_wav
 
-__all__ = ["click_song"]
+__all__ = ["click_song", "song_folder"]
 
 RATE = 22050
 
@@ -31,3 +34,14 @@ def click_song(path: Path, *, seconds: float = 2.0, bpm: float = 120.0) -> Path:
             * np.exp(-np.maximum(half, 0) * 60.0)
         )
     return save_wav(path, (0.5 * song).astype(np.float32), RATE)
+
+
+@contextmanager
+def song_folder(where: Path, *, seconds: float = 2.0) -> Iterator[Path]:
+    """``where`` with a `click_song` ``song.wav`` in it, and the XDG folders (the analysis
+    cache) set inside it while the context lasts; yields the song."""
+    song = click_song(where / "song.wav", seconds=seconds)
+    with pytest.MonkeyPatch.context() as patch:
+        for name in ("XDG_CACHE_HOME", "XDG_DATA_HOME"):
+            patch.setenv(name, str(where / name.lower()))
+        yield song

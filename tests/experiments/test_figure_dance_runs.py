@@ -16,7 +16,7 @@ import pytest
 
 pytest.importorskip("mujoco")
 
-from dance_helpers import click_song
+from dance_helpers import song_folder
 from gp_helpers import stored
 from killed_runs import kill_when, sinews_command, stored_generations
 from render_helpers import decode_audio, probe
@@ -50,10 +50,7 @@ def dance_name(controller: str, figure: str) -> str:
 def folder(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Path]:
     """A folder with a 2 s song, and the XDG folders (the analysis cache) inside it."""
     where = tmp_path_factory.mktemp("figure_dances")
-    click_song(where / "song.wav")
-    with pytest.MonkeyPatch.context() as patch:
-        for name in ("XDG_CACHE_HOME", "XDG_DATA_HOME"):
-            patch.setenv(name, str(where / name.lower()))
+    with song_folder(where):
         yield where
 
 

@@ -30,28 +30,25 @@ def key(individual: Individual) -> object:
     return genome if isinstance(genome, str) else np.asarray(genome, np.float64).tobytes()
 
 
-@pytest.mark.parametrize("controller", sorted(RUNS))
-def test_a_pick_logs_the_motion_that_replays_exactly(controller: str, tmp_path: Path) -> None:
+@pytest.mark.parametrize(
+    ("controller", "how"),
+    [(c, "pick") for c in sorted(RUNS)] + [("gp", "run"), ("springnet", "run")],
+)
+def test_scoring_logs_the_motion_that_replays_exactly(
+    controller: str, how: str, tmp_path: Path
+) -> None:
+    """A studio pick, or a background job extending a run by a generation, keeps the motion
+    it simulated while scoring, and a replay from the log equals a fresh simulation."""
     db = tmp_path / "runs.db"
     assert main(["evolve", *RUNS[controller], "--seed", "5", "--db", str(db)]) == 0
     log = MotionLog(50.0)
     with RunStore(db) as store:
         (info,) = store.runs()
         kind = kind_of(info)
-        kind.pick(store, info.id, 0, [0, 1], log=log)
-        assert_replays_from_the_log(kind, store, store.individuals(info.id, 1), log, controller)
-
-
-@pytest.mark.parametrize("controller", ["gp", "springnet"])
-def test_a_run_extended_in_the_background_logs_its_motion(controller: str, tmp_path: Path) -> None:
-    """The studio's background job extends a run one generation at a time with a log."""
-    db = tmp_path / "runs.db"
-    assert main(["evolve", *RUNS[controller], "--seed", "5", "--db", str(db)]) == 0
-    log = MotionLog(50.0)
-    with RunStore(db) as store:
-        (info,) = store.runs()
-        kind = kind_of(info)
-        kind.run(store, info.id, evaluator=SerialEvaluator(), generations=2, log=log)
+        if how == "pick":
+            kind.pick(store, info.id, 0, [0, 1], log=log)
+        else:
+            kind.run(store, info.id, evaluator=SerialEvaluator(), generations=2, log=log)
         assert_replays_from_the_log(kind, store, store.individuals(info.id, 1), log, controller)
 
 

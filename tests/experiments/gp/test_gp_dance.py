@@ -10,7 +10,7 @@ import pytest
 
 pytest.importorskip("mujoco")
 
-from dance_helpers import click_song
+from dance_helpers import click_song, song_folder
 from sinews.cli import main
 from sinews.store import RunStore
 
@@ -22,10 +22,7 @@ OPTIONS = ["--controller", "gp", "--task", "dance", "--population", "6", "--gene
 def folder(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Path]:
     """A folder with a 2 s song, and the XDG folders (the analysis cache) inside it."""
     where = tmp_path_factory.mktemp("gp_dance")
-    click_song(where / "song.wav")
-    with pytest.MonkeyPatch.context() as patch:
-        for name in ("XDG_CACHE_HOME", "XDG_DATA_HOME"):
-            patch.setenv(name, str(where / name.lower()))
+    with song_folder(where):
         yield where
 
 

@@ -10,7 +10,7 @@ import pytest
 
 pytest.importorskip("mujoco")
 
-from dance_helpers import click_song
+from dance_helpers import song_folder
 from sinews.control.music_input import MUSIC_TERMINALS
 from sinews.experiments.figures import make_figure
 from sinews.experiments.springnet.dance import (
@@ -29,11 +29,8 @@ from sinews.music import analyse_file
 @pytest.fixture(scope="module")
 def song(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Path]:
     """A 4 s drum track at 120 BPM, with the XDG folders (the analysis cache) beside it."""
-    where = tmp_path_factory.mktemp("net_dance")
-    with pytest.MonkeyPatch.context() as patch:
-        for name in ("XDG_CACHE_HOME", "XDG_DATA_HOME"):
-            patch.setenv(name, str(where / name.lower()))
-        yield click_song(where / "song.wav", seconds=4.0, bpm=120.0)
+    with song_folder(tmp_path_factory.mktemp("net_dance"), seconds=4.0) as song:
+        yield song
 
 
 def test_drive_genes_weigh_only_the_drive_columns() -> None:
