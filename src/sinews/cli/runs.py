@@ -184,7 +184,7 @@ def resume(
                 f"{code_version()}; new generations may differ from an uninterrupted run",
                 err=True,
             )
-        check_free(store.root, run)  # before any worker starts or progress shows
+        check_free(store.path, run)  # before any worker starts or progress shows
         with make_evaluator(
             executor or kind_of(info).default_executor, workers=workers, scheduler=scheduler
         ) as evaluator:

@@ -278,7 +278,7 @@ def continue_run(
         SinewsError: ``generations`` is fewer than the run already has.
         StoreError: another process is running the run (it holds the run's lease).
     """
-    with run_lease(store.root, run_id):  # one process at a time; see store/lease.py
+    with run_lease(store.path, run_id):  # one process at a time; see store/lease.py
         info = store.run(run_id)
         if generations is not None and generations != info.config["generations"]:
             if generations < info.generations:

@@ -2,8 +2,9 @@
 
 A run's ``running`` status says a run was started, not that a process is still
 at it: a killed run keeps it. The lease says the latter. `run_lease` holds an
-exclusive ``flock`` on ``<database folder>/locks/run-<id>.lock`` while a run
-evolves; the kernel drops it when the holder ends, however it ends (SIGKILL
+exclusive ``flock`` on ``<database folder>/locks/<database name>-run-<id>.lock``
+while a run evolves (named by the database too: two databases in one folder
+both have a run 1); the kernel drops it when the holder ends, however it ends (SIGKILL
 too). ``flock`` locks belong to one open file, so unlike SQLite's POSIX locks
 they are not dropped when the process closes some other descriptor of the file.
 """
@@ -21,8 +22,9 @@ from sinews.store.errors import StoreError
 __all__ = ["check_free", "leased", "run_lease"]
 
 
-def _path(root: Path, run_id: int) -> Path:
-    return root / "locks" / f"run-{run_id}.lock"
+def _path(db: Path, run_id: int) -> Path:
+    db = db.resolve()
+    return db.parent / "locks" / f"{db.name}-run-{run_id}.lock"
 
 
 def _taken(run_id: int) -> StoreError:
@@ -30,9 +32,10 @@ def _taken(run_id: int) -> StoreError:
 
 
 @contextmanager
-def run_lease(root: Path, run_id: int) -> Iterator[None]:
-    """Hold run ``run_id``'s lease for the block; `StoreError` if another holder has it."""
-    path = _path(root, run_id)
+def run_lease(db: Path, run_id: int) -> Iterator[None]:
+    """Hold the lease of run ``run_id`` of database ``db`` for the block; `StoreError` if
+    another holder has it."""
+    path = _path(db, run_id)
     try:
         path.parent.mkdir(exist_ok=True)
         handle = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
@@ -48,10 +51,11 @@ def run_lease(root: Path, run_id: int) -> Iterator[None]:
         os.close(handle)
 
 
-def leased(root: Path, run_id: int) -> bool:
-    """True while some holder (this process included) has run ``run_id``'s lease."""
+def leased(db: Path, run_id: int) -> bool:
+    """True while some holder (this process included) has the lease of run ``run_id`` of
+    database ``db``."""
     try:
-        handle = os.open(_path(root, run_id), os.O_RDWR)
+        handle = os.open(_path(db, run_id), os.O_RDWR)
     except FileNotFoundError:
         return False
     try:
@@ -63,7 +67,8 @@ def leased(root: Path, run_id: int) -> bool:
     return False
 
 
-def check_free(root: Path, run_id: int) -> None:
-    """`StoreError` now if another holder has run ``run_id``'s lease (before any work)."""
-    if leased(root, run_id):
+def check_free(db: Path, run_id: int) -> None:
+    """`StoreError` now if another holder has the lease of run ``run_id`` of ``db`` (before
+    any work)."""
+    if leased(db, run_id):
         raise _taken(run_id)

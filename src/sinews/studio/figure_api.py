@@ -67,7 +67,7 @@ def _run_json(studio: Studio, run: FigureRun) -> dict[str, Any]:
         "generations": info.generations,
         "planned": config.generations,
         "status": info.status,
-        "readOnly": not jobs.busy(run.id) and leased(studio.store.root, run.id),
+        "readOnly": not jobs.busy(run.id) and leased(studio.store.path, run.id),
         "job": None if job is None else job.to_json(),
         "terms": list(config.fitness.names),
         "fitness": config.fitness.to_dict(),
@@ -128,7 +128,7 @@ def _writable(studio: Studio, run_id: int) -> FigureRun:
     run = studio.figure_runs.get(run_id)
     if studio.figure_jobs.busy(run_id):
         raise RequestError(f"run {run_id} is evolving; pause it first", 409)
-    if leased(studio.store.root, run_id):
+    if leased(studio.store.path, run_id):
         raise RequestError(f"run {run_id} is running in another process", 409)
     return run
 
