@@ -86,3 +86,13 @@ def test_a_killed_run_resumes_to_the_uninterrupted_one(whole: Path, tmp_path: Pa
     assert 3 <= stored_generations(cut) < 8
     assert main(["runs", "resume", "1", "--db", str(cut)]) == 0
     assert stored(cut) == stored(whole)
+
+
+def test_a_replay_says_how_far_from_the_goal_it_ends(whole: Path) -> None:
+    """The main goal's own measure (the X, 1.5 m ahead), not how far the lamp travelled."""
+    with RunStore(whole) as store:
+        (info,) = store.runs()
+        people = store.individuals(info.id, 7)[:2]
+        for person, replay in zip(people, EXPERIMENT.replay(store, people), strict=True):
+            assert person.terms is not None
+            assert replay.summary == f"{-person.terms['distance']:.3f} m from the goal"

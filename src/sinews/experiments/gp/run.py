@@ -13,6 +13,7 @@ of a program (its S-expression).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -274,14 +275,13 @@ class GPKind:
 
         motion = recall(log, record_hz, genomes, simulate)
         scene = scene_of(settings.task)
-        names = list(settings.task.weights)
         replays = []
         for ind, (trajectory, terms, distance) in zip(individuals, motion, strict=True):
             replays.append(Replay(
                 individual=ind,
                 trajectory=trajectory,
                 title=f"{settings.task.figure.name}, generation {ind.generation} #{ind.index}",
-                summary=_summary(names, terms, distance),
+                summary=_summary(settings.task, terms),
                 distance=distance,
                 audio=None if settings.song_path is None else Path(settings.song_path),
                 figure=settings.task.figure,
@@ -350,11 +350,17 @@ def _task(figure: str, given: Mapping[str, Any]) -> Task:
     return make_task(name, **options)
 
 
-def _summary(names: list[str], terms: npt.NDArray[np.float64], distance: float) -> str:
-    """What the CLI says of a replayed program: the dance's beat lift, or the distance."""
-    if names[0] == "lift":
-        return f"beat lift {float(terms[0]):.3f}"
-    return f"{abs(distance):.3f} m"
+def _summary(task: Task, terms: npt.NDArray[np.float64]) -> str:
+    """What the CLI says of a replayed program: its main goal (a dance's beat lift, how far
+    it ends from the goal, how far off it points, how far short of the wave it falls)."""
+    main = float(terms[0])
+    if "lift" in task.weights:
+        return f"beat lift {main:.3f}"
+    if task.goal.origin:
+        return f"{math.degrees(-main):.1f}° off the target"
+    if task.goal.wave is not None:
+        return f"{-main:.3f} m short of the wave"
+    return f"{-main:.3f} m from the goal"
 
 
 def _number(value: object, name: str) -> float:
