@@ -94,5 +94,6 @@ def test_a_replay_says_how_far_from_the_goal_it_ends(whole: Path) -> None:
         (info,) = store.runs()
         people = store.individuals(info.id, 7)[:2]
         for person, replay in zip(people, EXPERIMENT.replay(store, people), strict=True):
-            assert person.terms is not None
-            assert replay.summary == f"{-person.terms['distance']:.3f} m from the goal"
+            distance = (person.terms or {})["distance"]
+            assert distance is not None
+            assert replay.summary == f"{-distance:.3f} m from the goal"
