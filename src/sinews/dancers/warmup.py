@@ -94,15 +94,16 @@ def _exit_with(parent: int) -> None:
 
 
 def _steady_beat(seconds: float) -> MusicFeatures:
-    """A silent song with beats every 0.5 s (MusicFeatures at the dancers' 60 fps)."""
+    """A silent song with beats every 0.5 s, at the dancers' frame rate."""
+    from sinews.dancers import DANCER_ENGINE
     from sinews.music import MusicFeatures
     from sinews.music.spectrum import DEFAULT_BANDS, band_centres, band_edges
 
-    fps = 60.0
+    fps = 1.0 / DANCER_ENGINE.dt
     frames = round(seconds * fps)
     levels = np.zeros((frames, DEFAULT_BANDS), np.float32)
     triggers = np.zeros(levels.shape, bool)
-    triggers[::30] = True
+    triggers[:: round(0.5 * fps)] = True
     beats = np.arange(0.0, seconds + 1.0, 0.5)
     edges = band_edges(DEFAULT_BANDS)
     return MusicFeatures(

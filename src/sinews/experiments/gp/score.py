@@ -36,13 +36,10 @@ def score_chunk(context: ChunkContext[GPSettings], texts: Sequence[str]) -> Scor
     """The evaluator's work unit: simulate a chunk of stored programs and measure their terms
     (and record their motion when the context asks)."""
     settings, hz = context.settings, context.record_hz
-    programs = settings.parse(texts)
-    if hz is None:
-        done = measure_programs(settings, programs, Runtime(nthread=context.nthread))
-        return Scores(terms=done.terms, failed=done.failed.copy())
-    runtime = Runtime(nthread=context.nthread, record_hz=hz)
-    done = measure_programs(settings, programs, runtime, record=True)
-    return Scores(terms=done.terms, failed=done.failed.copy(), motion=motion_records(done))
+    runtime = Runtime(nthread=context.nthread, record_hz=Runtime.record_hz if hz is None else hz)
+    done = measure_programs(settings, settings.parse(texts), runtime, record=hz is not None)
+    motion = () if hz is None else motion_records(done)
+    return Scores(terms=done.terms, failed=done.failed.copy(), motion=motion)
 
 
 def motion_records(done: Measured) -> tuple[tuple[Trajectory, FloatArray, float], ...]:
