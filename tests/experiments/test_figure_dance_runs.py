@@ -150,6 +150,21 @@ def test_a_dance_renders_with_its_song(folder: Path, dance: tuple[str, str, Path
             ["luxo3d", "--controller", "springnet", "--task", "dance", "--song", "song.wav"],
             "spring nets dance only the luxo, snake, humanoid",
         ),
+        (
+            [
+                "luxo",
+                "--controller",
+                "springnet",
+                "--task",
+                "dance",
+                "--song",
+                "song.wav",
+                "--tempi",
+                "0.3",
+            ],
+            "tempi must be between 0.5 and 2",
+        ),
+        (["luxo", "--controller", "springnet", "--tempi", "0.8"], "tempi are for a dance"),
     ],
 )
 def test_bad_dances_are_one_line(folder: Path, command: list[str], message: str) -> None:

@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
+import math
 import os
 import zipfile
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, fields, replace
 from pathlib import Path
 
 import numpy as np
@@ -94,6 +95,19 @@ class MusicFeatures:
     def frame_times(self) -> npt.NDArray[np.float64]:
         """(T,) seconds at each frame's centre."""
         return np.arange(self.n_frames) / self.fps
+
+    def played_at(self, rate: float) -> MusicFeatures:
+        """The analysis of the song played ``rate`` times as fast (tempo × ``rate``).
+
+        The frames are the same, only closer together (``fps`` × ``rate``); the beats come
+        ``rate`` times sooner. Pitch and levels do not change, as in a time-stretch.
+        """
+        if not (math.isfinite(rate) and rate > 0):
+            raise ValueError(f"a playback rate must be positive, got {rate!r}")
+        return replace(
+            self, fps=self.fps * rate, duration=self.duration / rate,
+            tempo_bpm=self.tempo_bpm * rate, beats=self.beats / rate,
+        )  # fmt: skip
 
     def save(self, path: str | os.PathLike[str]) -> Path:
         """Write the features to an uncompressed ``.npz`` file, atomically.

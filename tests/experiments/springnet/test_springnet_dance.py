@@ -11,8 +11,10 @@ import pytest
 pytest.importorskip("mujoco")
 
 from dance_helpers import song_folder
-from sinews.control.music_input import MUSIC_TERMINALS
+from sinews.control.music_input import MUSIC_TERMINALS, music_table
+from sinews.errors import SinewsError
 from sinews.experiments.figures import make_figure
+from sinews.experiments.score_memory import ChunkContext
 from sinews.experiments.springnet.dance import (
     DANCE_FIGURES,
     DRIVE,
@@ -20,9 +22,11 @@ from sinews.experiments.springnet.dance import (
     dominant_period,
     drive_weights,
 )
-from sinews.experiments.springnet.settings import SpringNetSettings
+from sinews.experiments.springnet.score import score_chunk
+from sinews.experiments.springnet.settings import MAX_TEMPI, SpringNetSettings, tempi_of
 from sinews.experiments.springnet.simulate import simulate
 from sinews.figures.tasks import make_task
+from sinews.figures.terms import TaskMeter
 from sinews.music import analyse_file
 
 
@@ -54,25 +58,87 @@ def test_dominant_period_finds_the_strongest_swing() -> None:
     assert dominant_period(np.ones(300), 100) == np.inf
 
 
-def test_a_driven_net_swings_at_the_beat_and_a_free_one_at_its_own_period(song: Path) -> None:
-    music = analyse_file(song)
-    period = 60.0 / music.tempo_bpm
-    assert period == pytest.approx(0.5, rel=0.03)
-    settings = SpringNetSettings.from_values({"figure": "luxo", "seconds": 4.0, "masses": 3,
-        "control_hz": 100, "task": "dance", "song_path": str(song),
-        "song_hash": music.song_hash})  # fmt: skip
+def _dance_settings(song: Path, seconds: float, **values: object) -> SpringNetSettings:
+    return SpringNetSettings.from_values({"figure": "luxo", "seconds": seconds, "control_hz": 100,
+        "task": "dance", "song_path": str(song), "song_hash": analyse_file(song).song_hash,
+        **values})  # fmt: skip
+
+
+@pytest.mark.parametrize("rate", [1.0, 1.25])
+def test_a_driven_net_swings_at_the_beat_and_a_free_one_at_its_own_period(
+    song: Path, rate: float
+) -> None:
+    period = 60.0 / analyse_file(song).tempo_bpm / rate
+    assert period * rate == pytest.approx(0.5, rel=0.03)
+    settings = _dance_settings(song, 3.0, masses=3, tempi=[rate])
     size, n = settings.encoding.size, settings.masses
     genes = np.full((3, settings.genome_size), 0.5)  # every mass at 0, no drive
     genes[:, n : size - n] = 0.0  # no springs
     genes[0, size:] = [0.8, 0.5, 0.5, 0.5, 0.5, 0.5]  # mass 0 feels the beat's sine
     genes[2, n : size - n] = 0.05  # springs of 5
     genes[2, size - n : size] = [0.2, 0.8, 0.5]  # masses apart: the net swings by itself
-    _, net = simulate(settings, genes, record_hz=100.0)
+    _, net = simulate(settings, genes, record_hz=100.0, rate=rate)
     assert net is not None
     driven, still, free = (dominant_period(net[:, k], 100.0) for k in range(3))
     assert driven == pytest.approx(period, rel=0.05)
     assert still == np.inf and not net[:, 1].any()
     assert abs(free / period - 1) > 0.5
+
+
+def test_a_song_played_faster_is_the_same_music_sooner(song: Path) -> None:
+    music = analyse_file(song)
+    fast = music.played_at(1.25)
+    np.testing.assert_allclose(fast.beats, music.beats / 1.25)
+    assert fast.tempo_bpm == pytest.approx(1.25 * music.tempo_bpm)
+    assert fast.duration == pytest.approx(music.duration / 1.25)
+    # 100 ticks a second of the fast song are 80 a second of the song itself (but where a
+    # tick falls half-way between two frames, rounding may pick either)
+    frame = np.arange(201) / 80 * music.fps
+    clear = np.abs(frame - np.floor(frame) - 0.5) > 1e-6
+    np.testing.assert_allclose(music_table(fast, 100, 200)[clear],
+                               music_table(music, 80, 200)[clear], atol=1e-9)  # fmt: skip
+    with pytest.raises(ValueError, match="positive"):
+        music.played_at(float("nan"))
+
+
+def test_a_nets_dance_terms_are_the_means_over_its_tempi(song: Path) -> None:
+    alone = _dance_settings(song, 3.0)
+    both = _dance_settings(song, 3.0, tempi=[1.25])
+    assert alone.tempi == (1.0,) and both.tempi == (1.0, 1.25)
+    genes = np.random.default_rng(5).random((4, both.genome_size))
+    own = score_chunk(ChunkContext(alone, None, 30.0), genes)
+    mean = score_chunk(ChunkContext(both, None, 30.0), genes)
+    dance = both.dance
+    assert dance is not None
+    meter = TaskMeter(dance, len(genes), beats=both.heard_at(1.25).beats)
+    faster, _ = simulate(both, genes, observer=meter, rate=1.25)
+    np.testing.assert_array_equal(mean.terms, (own.terms + meter.terms()) / 2)
+    assert not (mean.failed | faster.failed | own.failed).any()
+    assert not np.array_equal(mean.terms, own.terms)
+    for (trajectory, _, net), (kept, _, kept_net) in zip(mean.motion, own.motion, strict=True):
+        np.testing.assert_array_equal(trajectory.qpos, kept.qpos)  # the song's own tempo
+        np.testing.assert_array_equal(net, kept_net)
+
+
+@pytest.mark.parametrize(
+    ("value", "tempi"),
+    [(None, (1.0,)), ("0.8,1.25", (1.0, 0.8, 1.25)), ([1.25, 1.0], (1.0, 1.25)), ("1", (1.0,))],
+)
+def test_tempi_put_the_songs_own_first(value: object, tempi: tuple[float, ...]) -> None:
+    assert tempi_of(value) == tempi
+
+
+@pytest.mark.parametrize("value", ["0.4", "2.5", "nan", "inf", "fast", "", [], "0.6,0.7,0.8,0.9"])
+def test_bad_tempi_are_refused(value: object) -> None:
+    with pytest.raises(SinewsError, match="tempi"):
+        tempi_of(value)
+    assert MAX_TEMPI == 4
+
+
+def test_a_song_too_short_for_its_fastest_tempo_is_refused(song: Path) -> None:
+    settings = _dance_settings(song, 3.5, tempi=[1.5])
+    with pytest.raises(SinewsError, match=r"1\.5x as fast lasts"):
+        settings.heard_at(1.5)
 
 
 def test_a_dancing_net_drives_only_the_dances_joints(song: Path) -> None:

@@ -44,7 +44,7 @@ from sinews.experiments.motion_log import MotionLog, recall
 from sinews.experiments.run_config import EvolutionConfig, build_config
 from sinews.experiments.springnet.dance import DANCE_FIGURES
 from sinews.experiments.springnet.score import SpringNetScorer, motion_records
-from sinews.experiments.springnet.settings import TERMS, SpringNetSettings
+from sinews.experiments.springnet.settings import TERMS, SpringNetSettings, tempi_of
 from sinews.experiments.springnet.simulate import simulate
 from sinews.figures.tasks import make_task
 from sinews.render.figure import NetPanel
@@ -71,9 +71,12 @@ DEFAULTS: dict[str, Any] = {
     "keep": {},
     "task": None,
     "song": None,
+    "tempi": None,
 }
 """The paper's largest run (20 generations of 2000 nets, 5 s trials) unless told otherwise."""
-_KIND_KEYS = ("figure", "seconds", "masses", "physics_hz", "control_hz", "keep", "task", "song")
+_KIND_KEYS = (
+    "figure", "seconds", "masses", "physics_hz", "control_hz", "keep", "task", "song", "tempi",
+)  # fmt: skip
 
 
 class SpringNetKind:
@@ -91,6 +94,8 @@ class SpringNetKind:
         KindOption("task", str, "Spring nets: dance (Luxo, snake, humanoid; the net entrained "
                    "by --song), or none for the paper's distance."),
         KindOption("song", str, "Spring-net dance: the song file, or demo:groove / demo:sway."),
+        KindOption("tempi", str, "Spring-net dance: also dance the song played at these rates "
+                   "(e.g. 0.8,1.25; fitness is the mean), so no period of the net's own pays."),
     )  # fmt: skip
     defaults = DEFAULTS
     summary = "spring nets that move it as far as they can (|x_end - x_start|)"
@@ -126,10 +131,12 @@ class SpringNetKind:
         song = dance_song(given)
         defaults, terms = (DEFAULTS, TERMS) if song is None else dance_defaults(subject, given)
         if song is not None:
+            fastest = max(tempi_of(given.get("tempi")))
             options = {
                 **options,
-                "seconds": dance_seconds(song[1], given.get("seconds"), DANCE_SECONDS),
-            }
+                "seconds": dance_seconds(song[1].played_at(fastest), given.get("seconds"),
+                                         DANCE_SECONDS),
+            }  # fmt: skip
         config, extra = build_config(
             file_values=file_values,
             options={**options, "figure": subject},

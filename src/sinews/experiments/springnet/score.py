@@ -34,19 +34,39 @@ def score_chunk(context: ChunkContext[SpringNetSettings], genes: FloatArray) -> 
     """The evaluator's work unit: simulate a chunk of (k, G) nets and measure the distance.
 
     Returns:
-        Scores with one term column, ``distance`` (m), or a dance's terms; a net's
-        numbers depend only on its genes and the settings.
+        Scores with one term column, ``distance`` (m), or a dance's terms (the means over
+        its `tempi`; failed at any tempo is failed); a net's numbers depend only on its
+        genes and the settings.
     """
     settings = context.settings
-    meter = None
-    if settings.dance is not None:
-        assert settings.music is not None
-        meter = TaskMeter(settings.dance, len(genes), beats=settings.music.beats)
-    result, net = simulate(settings, genes, record_hz=context.record_hz,
-                           nthread=context.nthread, observer=meter)  # fmt: skip
-    terms = distance_travelled(result)[:, None] if meter is None else meter.terms()
+    if settings.dance is None:
+        result, net = simulate(settings, genes, record_hz=context.record_hz,
+                               nthread=context.nthread)  # fmt: skip
+        terms, failed = distance_travelled(result)[:, None], result.failed.copy()
+    else:  # the song at each tempo; the motion kept is the song's own (tempi[0] = 1.0)
+        (terms, result, net), *others = [
+            _dance(context, genes, rate, record_hz=None if k else context.record_hz)
+            for k, rate in enumerate(settings.tempi)
+        ]
+        terms = np.mean([terms, *(t for t, _, _ in others)], axis=0)
+        failed = np.logical_or.reduce([result.failed, *(r.failed for _, r, _ in others)])
     motion = () if net is None else motion_records(result, net)
-    return Scores(terms=terms, failed=result.failed.copy(), motion=motion)
+    return Scores(terms=terms, failed=failed, motion=motion)
+
+
+def _dance(
+    context: ChunkContext[SpringNetSettings],
+    genes: FloatArray,
+    rate: float,
+    record_hz: float | None,
+) -> tuple[FloatArray, RolloutResult, FloatArray | None]:
+    """(k, K) dance terms of (k, G) nets to the song played at ``rate``, and their rollout."""
+    settings = context.settings
+    assert settings.dance is not None
+    meter = TaskMeter(settings.dance, len(genes), beats=settings.heard_at(rate).beats)
+    result, net = simulate(settings, genes, record_hz=record_hz, nthread=context.nthread,
+                           observer=meter, rate=rate)  # fmt: skip
+    return meter.terms(), result, net
 
 
 def motion_records(

@@ -22,7 +22,7 @@ from sinews.figures.tasks import Task, make_task
 from sinews.limits import MAX_MASSES, check_whole
 from sinews.music.features import MusicFeatures
 
-__all__ = ["NET_TIME_STEP", "PHYSICS_HZ", "TERMS", "SpringNetSettings"]
+__all__ = ["MAX_TEMPI", "NET_TIME_STEP", "PHYSICS_HZ", "TERMS", "SpringNetSettings", "tempi_of"]
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -31,6 +31,8 @@ NET_TIME_STEP = 0.005
 PHYSICS_HZ = {"snake": 500, "luxo": 1000, "humanoid": 1000}
 """Default physics rate per figure: the snake's distances at 500 Hz match 1 kHz (r = 0.996
 over 2000 random nets); the Luxo's hops are chaotic, so it keeps its model's 1 kHz."""
+MAX_TEMPI = 4
+"""At most this many playback rates per dance (each one is a whole rollout)."""
 TERMS = {"distance": 1.0}
 """The fitness terms and their weights: the paper's distance only."""
 
@@ -49,6 +51,9 @@ class SpringNetSettings:
             `sinews.experiments.springnet.dance`), or None for the paper's distance.
         song_path: a dance's song file.
         song_hash: its SHA-256, checked whenever the song is read again.
+        tempi: a dance's playback rates, 1.0 (the song as it is) first: every net dances
+            the song at each rate (`MusicFeatures.played_at`) and its terms are the means,
+            so a net that swings at one period of its own cannot score on all of them.
     """
 
     figure: str
@@ -59,6 +64,7 @@ class SpringNetSettings:
     task: str | None = None
     song_path: str | None = None
     song_hash: str | None = None
+    tempi: tuple[float, ...] = (1.0,)
 
     @classmethod
     def from_values(cls, values: Mapping[str, Any]) -> SpringNetSettings:
@@ -85,6 +91,7 @@ class SpringNetSettings:
             task=values.get("task"),
             song_path=values.get("song_path"),
             song_hash=values.get("song_hash"),
+            tempi=tempi_of(values.get("tempi")),
         )
         if settings.physics_hz % settings.control_hz:
             raise SinewsError("control_hz must divide physics_hz")
@@ -94,6 +101,8 @@ class SpringNetSettings:
             raise SinewsError(f"spring nets dance only the {', '.join(DANCE_FIGURES)}")
         if (settings.task is None) != (settings.song_path is None):
             raise SinewsError("a dance needs a song (--song), and only a dance hears one")
+        if settings.task is None and settings.tempi != (1.0,):
+            raise SinewsError("tempi are for a dance (--task dance)")
         return settings
 
     def to_dict(self) -> dict[str, Any]:
@@ -107,6 +116,7 @@ class SpringNetSettings:
             "task": self.task,
             "song_path": self.song_path,
             "song_hash": self.song_hash,
+            "tempi": list(self.tempi),
         }
 
     @cached_property
@@ -168,12 +178,47 @@ class SpringNetSettings:
             input_weights=drive,
         )
 
-    def with_music(self, controller: SpringNetController) -> Controller:
-        """The controller hearing the song (for a dance), else itself."""
+    def heard_at(self, rate: float) -> MusicFeatures:
+        """The song's analysis played at ``rate`` (one of `tempi`).
+
+        Raises:
+            SinewsError: not a dance, or the song played at ``rate`` is shorter than a trial.
+        """
+        if self.music is None:
+            raise SinewsError("only a dance hears a song")
+        music = self.music if rate == 1.0 else self.music.played_at(rate)
+        if music.duration + 1e-9 < self.seconds:
+            raise SinewsError(f"the song played {rate:g}x as fast lasts {music.duration:.1f} s, "
+                              f"less than a {self.seconds:g} s trial")  # fmt: skip
+        return music
+
+    def with_music(self, controller: SpringNetController, rate: float = 1.0) -> Controller:
+        """The controller hearing the song played at ``rate`` (for a dance), else itself."""
         if self.music is None:
             return controller
-        table = music_table(self.music, self.control_hz, round(self.seconds * self.control_hz))
+        table = music_table(self.heard_at(rate), self.control_hz,
+                            round(self.seconds * self.control_hz))  # fmt: skip
         return MusicInput(controller, table, self.control_hz)
+
+
+def tempi_of(value: object) -> tuple[float, ...]:
+    """Playback rates from a run file (a list), ``--tempi 0.8,1.25`` or a stored config,
+    with 1.0 (the song as it is) put first: each 0.5-2, at most `MAX_TEMPI` in all."""
+    if value is None:
+        return (1.0,)
+    items = value.split(",") if isinstance(value, str) else value
+    if not isinstance(items, list | tuple) or not items:
+        raise SinewsError(f"tempi must be playback rates, e.g. 0.8,1.25; got {value!r}")
+    try:
+        rates = [float(item) for item in items]
+    except (TypeError, ValueError):
+        raise SinewsError(f"tempi must be playback rates, e.g. 0.8,1.25; got {value!r}") from None
+    if not all(0.5 <= rate <= 2.0 for rate in rates):
+        raise SinewsError(f"tempi must be between 0.5 and 2, got {value!r}")
+    tempi = tuple(dict.fromkeys([1.0, *rates]))
+    if len(tempi) > MAX_TEMPI:
+        raise SinewsError(f"at most {MAX_TEMPI} tempi (the song's own among them)")
+    return tempi
 
 
 def _number(value: object, name: str) -> float:

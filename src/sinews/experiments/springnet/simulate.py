@@ -28,6 +28,7 @@ def simulate(
     record_hz: float | None = None,
     nthread: int | None = None,
     observer: Observer | None = None,
+    rate: float = 1.0,
 ) -> tuple[RolloutResult, FloatArray | None]:
     """Simulate (P, G) nets driving the run's figure in one batched rollout.
 
@@ -37,6 +38,7 @@ def simulate(
         record_hz: record the motion (and the nets) at this frame rate; None: don't.
         nthread: MuJoCo threads (None: every CPU).
         observer: also shown every tick (e.g. a dance's `TaskMeter`).
+        rate: a dance's song played this many times as fast (see `SpringNetSettings.tempi`).
 
     Returns:
         The rollout and, when recording, (T, P, n) every net's mass positions
@@ -53,7 +55,7 @@ def simulate(
             observer(t, sensors, targets)
 
     result = rollout(
-        figure, settings.with_music(controller), len(genes), settings.seconds,
+        figure, settings.with_music(controller, rate), len(genes), settings.seconds,
         control_hz=settings.control_hz, physics_hz=settings.physics_hz,
         record=record_hz is not None, record_hz=record_hz or 60.0, nthread=nthread,
         observer=None if record_hz is None and observer is None else watch,
