@@ -39,6 +39,21 @@ def test_deap_breeding_gives_a_whole_next_generation() -> None:
     ]
 
 
+def test_deaps_way_rates_each_program_as_our_generation_does() -> None:
+    pytest.importorskip("mujoco")
+    from sinews.benchmarks.gp import _rate_alone
+    from sinews.experiments.gp.settings import GPSettings
+    from sinews.experiments.gp.simulate import measure_programs
+
+    settings = GPSettings(task_name="luxo-hop", task_options={"target": 1.0}, seconds=0.3)
+    programs = ramped_half_and_half(settings.pset, np.random.default_rng(2), n_programs=3,
+                                    n_trees=3)  # fmt: skip
+    ours = measure_programs(settings, programs)
+    alone = np.stack([_rate_alone(settings, program) for program in programs])
+    assert not ours.failed.any()
+    np.testing.assert_array_equal(alone, ours.terms)
+
+
 def test_taichi_frame_loop_ends_where_ours_does() -> None:
     pytest.importorskip("taichi")
     from sinews.benchmarks import _taichi

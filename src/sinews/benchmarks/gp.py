@@ -138,6 +138,13 @@ def _rate_alone(settings: GPSettings, program: Program) -> FloatArray:
     return np.where(result.failed[0], np.nan, terms)
 
 
+def _warm_pool(settings: GPSettings, programs: list[Program]) -> Pool:
+    """A worker per CPU (spawned: no fork of numba's threads), each having rated a program."""
+    pool = get_context("spawn").Pool(os.cpu_count())
+    pool.map(partial(_rate_alone, settings), programs)
+    return pool
+
+
 def _deap_way(
     settings: GPSettings, programs: list[Program], spec: FitnessSpec, pool: Pool
 ) -> float:
@@ -198,16 +205,18 @@ def _generation(settings: GPSettings, size: int, repeats: int) -> list[Result]:
     case = f"generation luxo-hop P={size} x {seconds:g} s at 1 kHz"
     deap = optional("deap", f"{case} vs DEAP")
     times = {"ours": np.inf, "mujoco": np.inf, "deap": np.inf, "deap's way": np.inf}
-    with get_context("spawn").Pool(os.cpu_count()) as pool:  # no fork of numba's threads
-        if not isinstance(deap, Skipped):
-            pool.map(partial(_rate_alone, settings), programs[:2])  # start and warm the workers
+    pool = None if isinstance(deap, Skipped) else _warm_pool(settings, programs[:2])
+    try:
         for _ in range(repeats):  # alternately, so that load from elsewhere hits all alike
             times["ours"] = min(times["ours"], generation())
             times["mujoco"] = min(times["mujoco"], _stepping_alone(task, replay, substeps))
-            if not isinstance(deap, Skipped):
+            if pool is not None:
                 times["deap"] = min(times["deap"], _deap_generation(settings, programs, spec))
                 way = _deap_way(settings, programs, spec, pool)
                 times["deap's way"] = min(times["deap's way"], way)
+    finally:
+        if pool is not None:
+            pool.terminate()
     results: list[Result] = [
         Measurement(case, "generations/s", 1 / times["ours"], 1 / times["mujoco"],
                     "MuJoCo stepping alone (same motions)"),
