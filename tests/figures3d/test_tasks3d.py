@@ -108,6 +108,31 @@ def test_a_wave_at_the_rate_scores_near_zero_and_a_hanging_arm_does_not() -> Non
     assert -raised["distance"] == pytest.approx(task.goal.wave.amplitude, abs=0.01)
 
 
+@pytest.mark.parametrize(("turn", "short"), [(0.6, (0.15, 0.2)), (-0.6, (0.0, 0.02))])
+def test_a_hand_fanning_the_face_is_no_wave(turn: float, short: tuple[float, float]) -> None:
+    """The forearm raised in front and swung side to side: across the face (the swing
+    centred 18 cm inward of the shoulder) it falls short by about that; beside the head,
+    it waves."""
+    task = make_task("humanoid3d-gesture", rate=1.5, window=1.5, seconds=3.0)
+    figure = task.figure
+    turning = figure.joints.index("shoulder_z_r")
+
+    class Fan:
+        def reset(self, n: int) -> None:
+            self.out = np.tile(figure.neutral, (n, 1))
+            self.out[:, figure.joints.index("shoulder_y_r")] = -2.2
+            self.out[:, figure.joints.index("elbow_r")] = -1.6
+
+        def control(self, t: float, sensors: np.ndarray) -> np.ndarray:
+            self.out[:, turning] = turn + 0.4 * math.sin(2 * math.pi * 1.5 * t)
+            return self.out
+
+    meter = TaskMeter(task, 1)
+    rollout(figure, Fan(), 1, task.seconds, nthread=1, observer=meter)
+    shortfall = -dict(zip(task.weights, meter.terms()[0], strict=True))["distance"]
+    assert short[0] <= shortfall <= short[1]
+
+
 @pytest.mark.parametrize(("name", "seconds"), [("luxo3d-hop", 1.0), ("humanoid3d-nose", 0.5)])
 def test_gp_scores_do_not_depend_on_batch_or_threads(name: str, seconds: float) -> None:
     settings = GPSettings(name, {}, seconds=seconds)

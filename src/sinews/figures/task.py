@@ -77,18 +77,22 @@ class Wave:
 
     Over the last ``window`` seconds, the first axis of tracked − target (e.g. the hand's
     sideways offset from the shoulder) must swing at ``rate`` Hz with at least
-    ``amplitude`` m (the amplitude of its Fourier component at that rate), and the second
-    (e.g. the hand's height over the shoulder) must stay above 0.
+    ``amplitude`` m (the amplitude of its Fourier component at that rate), about a centre
+    (its mean) of at most ``centre_at_most`` m, and the second (e.g. the hand's height
+    over the shoulder) must stay above 0.
 
     Attributes:
         rate: Hz.
         amplitude: m.
         window: s, at the end of the trial.
+        centre_at_most: m, or None for anywhere (e.g. 0 for the right hand: not inward of
+            the shoulder, so a hand fanning the face is no wave).
     """
 
     rate: float = 1.5
     amplitude: float = 0.1
     window: float = 1.5
+    centre_at_most: float | None = None
 
     def __post_init__(self) -> None:
         if not (self.rate > 0 and self.amplitude > 0 and self.window > 0):

@@ -292,9 +292,11 @@ def humanoid3d_gesture(
     rate: float = 1.5, *, amplitude: float = 0.1, window: float = 1.5, seconds: float = 4.0
 ) -> Task:
     """Wave: for the last ``window`` s the right hand is above the shoulder and swings
-    sideways at ``rate`` Hz by at least ``amplitude`` m. The right arm's four hinges are
+    sideways at ``rate`` Hz by at least ``amplitude`` m, about a point not inward of the
+    shoulder (beside the head, not fanning the face). The right arm's four hinges are
     driven; the terminals add their rates (an oscillator needs them)."""
-    wave = Wave(rate=float(rate), amplitude=float(amplitude), window=float(window))
+    wave = Wave(rate=float(rate), amplitude=float(amplitude), window=float(window),
+                centre_at_most=0.0)  # fmt: skip
     if wave.window > seconds:
         raise FigureError("humanoid3d-gesture: the wave's window is longer than the trial")
     goal = Goal(tracked=("l_hand_r", "u_hand_r"), target=("l_shoulder_r", "u_shoulder_r"),

@@ -11,8 +11,8 @@ The terms (`TERMS`), each **higher is better** (penalties are ≤ 0), as
   target at the end, m. For a direction goal (pointing), minus the angle at
   the origin between the tracked point and the target at the end, rad; for a
   wave, minus how far the last seconds fall short of the wave, m (the
-  missing amplitude at the wave's rate plus the mean depth below the
-  required height).
+  missing amplitude at the wave's rate, plus how far the swing's centre
+  lies beyond its bound, plus the mean depth below the required height).
 - ``early``: 1 − (time from which the tracked point stays within
   ``goal.radius`` to the end) / duration; 0 if it does not end there. "Bonus
   for completing the motion early": a hand that passes through the target
@@ -184,7 +184,10 @@ class TaskMeter:
         cosine = self._wave_sums[:, 1] - mean * self._wave_basis[1]
         amplitude = 2.0 * np.hypot(sine, cosine) / n
         below = self._wave_sums[:, 2] / n
-        return np.maximum(0.0, wave.amplitude - amplitude) + below
+        shortfall = np.maximum(0.0, wave.amplitude - amplitude) + below
+        if wave.centre_at_most is not None:
+            shortfall += np.maximum(0.0, mean - wave.centre_at_most)
+        return shortfall
 
     @property
     def observations(self) -> int:
