@@ -21,14 +21,34 @@ from sinews.figures.tasks import Task, TaskMeter, make_task
 from sinews.figures.tasks3d import TASKS_3D
 
 
-def _held(task: Task, pose: dict[str, float], seconds: float | None = None) -> dict[str, Any]:
-    """The task's terms for the figure holding ``pose`` (others neutral)."""
+def _held(
+    task: Task,
+    pose: dict[str, float],
+    seconds: float | None = None,
+    *,
+    swing: tuple[str, float] | None = None,
+) -> dict[str, Any]:
+    """The task's terms for the figure holding ``pose`` (others neutral), one joint
+    swinging about it by ± ``swing[1]`` rad at the task's wave rate, if given."""
     figure = task.figure
     targets = figure.neutral.copy()
     for joint, angle in pose.items():
         targets[figure.joints.index(joint)] = angle
+    controller = HoldPose(targets)
+    if swing is not None:
+        assert task.goal.wave is not None
+        rate, (joint, amplitude) = task.goal.wave.rate, swing
+        k = figure.joints.index(joint)
+
+        class Swing(HoldPose):
+            def control(self, t: float, sensors: np.ndarray) -> np.ndarray:
+                out = super().control(t, sensors).copy()
+                out[:, k] += amplitude * math.sin(2 * math.pi * rate * t)
+                return out
+
+        controller = Swing(targets)
     meter = TaskMeter(task, 1)
-    rollout(figure, HoldPose(targets), 1, seconds or task.seconds, nthread=1, observer=meter)
+    rollout(figure, controller, 1, seconds or task.seconds, nthread=1, observer=meter)
     return dict(zip(task.weights, meter.terms()[0], strict=True))
 
 
@@ -85,20 +105,7 @@ def test_touch_scores_the_fingertips_distance() -> None:
 
 def test_a_wave_at_the_rate_scores_near_zero_and_a_hanging_arm_does_not() -> None:
     task = make_task("humanoid3d-gesture", rate=1.5, window=1.5, seconds=3.0)
-    figure = task.figure
-    arm = figure.joints.index("shoulder_x_r")
-
-    class Wave:
-        def reset(self, n: int) -> None:
-            self.out = np.tile(figure.neutral, (n, 1))
-
-        def control(self, t: float, sensors: np.ndarray) -> np.ndarray:
-            self.out[:, arm] = -2.6 + 0.35 * math.sin(2 * math.pi * 1.5 * t)
-            return self.out
-
-    meter = TaskMeter(task, 1)
-    rollout(figure, Wave(), 1, task.seconds, nthread=1, observer=meter)
-    waving = dict(zip(task.weights, meter.terms()[0], strict=True))
+    waving = _held(task, {"shoulder_x_r": -2.6}, swing=("shoulder_x_r", 0.35))
     hanging = _held(task, {})
     raised = _held(task, {"shoulder_x_r": -2.6})  # up and out to the side, held still
     assert -waving["distance"] < 0.02
@@ -114,23 +121,8 @@ def test_a_hand_fanning_the_face_is_no_wave(turn: float, short: tuple[float, flo
     centred 18 cm inward of the shoulder) it falls short by about that; beside the head,
     it waves."""
     task = make_task("humanoid3d-gesture", rate=1.5, window=1.5, seconds=3.0)
-    figure = task.figure
-    turning = figure.joints.index("shoulder_z_r")
-
-    class Fan:
-        def reset(self, n: int) -> None:
-            self.out = np.tile(figure.neutral, (n, 1))
-            self.out[:, figure.joints.index("shoulder_y_r")] = -2.2
-            self.out[:, figure.joints.index("elbow_r")] = -1.6
-
-        def control(self, t: float, sensors: np.ndarray) -> np.ndarray:
-            self.out[:, turning] = turn + 0.4 * math.sin(2 * math.pi * 1.5 * t)
-            return self.out
-
-    meter = TaskMeter(task, 1)
-    rollout(figure, Fan(), 1, task.seconds, nthread=1, observer=meter)
-    shortfall = -dict(zip(task.weights, meter.terms()[0], strict=True))["distance"]
-    assert short[0] <= shortfall <= short[1]
+    fan = {"shoulder_y_r": -2.2, "elbow_r": -1.6, "shoulder_z_r": turn}
+    assert short[0] <= -_held(task, fan, swing=("shoulder_z_r", 0.4))["distance"] <= short[1]
 
 
 @pytest.mark.parametrize(("name", "seconds"), [("luxo3d-hop", 1.0), ("humanoid3d-nose", 0.5)])
