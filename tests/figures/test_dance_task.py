@@ -7,9 +7,17 @@ import pytest
 
 pytest.importorskip("mujoco")
 
+from sinews.control.hold import HoldPose
 from sinews.control.music_input import MUSIC_TERMINALS
-from sinews.figures import FigureError
-from sinews.figures.tasks import DANCE_STYLE, TASKS, TaskMeter, luxo_dance, make_task
+from sinews.figures import FigureError, rollout
+from sinews.figures.tasks import (
+    DANCE_STYLE,
+    LUXO_LYING,
+    TASKS,
+    TaskMeter,
+    luxo_dance,
+    make_task,
+)
 
 BEATS = np.arange(0.25, 4.0, 0.5)
 HZ = 100
@@ -107,3 +115,20 @@ def test_the_style_terms_see_idle_joints_jerks_and_wandering() -> None:
     assert terms["joints"][0] == pytest.approx(-2 / 3)  # two of three joints never move
     assert terms["smooth"][1] < -0.5  # a 17 Hz square wave
     assert terms["spot"] == pytest.approx(-np.mean(t / len(t)))
+
+
+def test_a_lamp_with_its_shade_on_the_floor_is_down() -> None:
+    """Standing, the shade is 0.39 m up; a lamp lying on its side beating its shade on the
+    floor touches it only now and then, so the shade's height is what says it is down."""
+    task = luxo_dance(seconds=1.0)
+    figure = task.figure
+    meter = TaskMeter(task, 2, beats=BEATS)
+    held = np.tile(figure.neutral, (2, 1))
+    standing = rollout(figure, HoldPose(figure.neutral), 1, 0.5, nthread=1, record=True)
+    assert standing.body_pos is not None and standing.body_pos[-1, 0, -1, 2] > LUXO_LYING + 0.15
+    sensors = np.zeros((2, figure.n_sensors))
+    sensors[:, figure.sensor_index("z_shade")] = [0.39, LUXO_LYING - 0.01]
+    for k in range(HZ + 1):
+        meter(k / HZ, sensors, held)
+    fallen = dict(zip(task.weights, meter.terms().T, strict=True))["fallen"]
+    assert fallen.tolist() == [0.0, -1.0]

@@ -152,6 +152,8 @@ class Task:
         max_tilt: the figure has fallen while |root pitch| exceeds this, rad.
         min_height: ... or while the root is lower than this, m (``root_z`` is
             measured from the rest pose, so this is usually negative).
+        low: ... or while a sensor column reads less than a value, e.g. ``("z_shade",
+            0.2)``: a lamp whose shade is under 20 cm is lying down, or None.
         params: what the task was built with (for configs and titles).
         music: the music terminals the controller hears after the sensors and the goal's
             (see `sinews.control.music_input`; a dance's); their values follow the
@@ -169,13 +171,16 @@ class Task:
     min_height: float = -math.inf
     params: Mapping[str, Any] = field(default_factory=dict)
     music: tuple[str, ...] = ()
+    low: tuple[str, float] | None = None
 
     def __post_init__(self) -> None:
         unknown = [t for t in self.weights if t not in TERMS]
         if unknown or next(iter(self.weights), None) not in MAIN_GOALS:
             raise FigureError(f"{self.name}: weights must start with {' or '.join(MAIN_GOALS)} "
                               f"and use {TERMS}")  # fmt: skip
-        for column in (*self.sensors, *self.goal.tracked, *self.goal.target, *self.goal.origin):
+        low = () if self.low is None else (self.low[0],)
+        for column in (*self.sensors, *self.goal.tracked, *self.goal.target, *self.goal.origin,
+                       *low):  # fmt: skip
             if isinstance(column, str):
                 self.figure.sensor_index(column)
         if not self.joints:
@@ -238,13 +243,15 @@ def dance_task(
     style: Mapping[str, float] = DANCE_STYLE,
     max_tilt: float = 1.0,
     min_height: float = -math.inf,
+    low: tuple[str, float] | None = None,
 ) -> Task:
     """A dance of ``figure`` to the song: its ``joints``' motion must pause on the beats
     (``lift``), with ``style`` points (`DANCE_STYLE` unless a figure needs others, e.g. a
     snake that lies on the floor: no ``head`` or ``fallen``).
 
     The controller hears the song (`MUSIC_TERMINALS`) beside ``sensors``; ``spot``, the
-    root's position columns (one per floor axis), must stay near their start, 0.
+    root's position columns (one per floor axis), must stay near their start, 0. The
+    figure is down as `Task` says (``max_tilt``, ``min_height``, ``low``).
     """
     return Task(
         name=name,
@@ -257,4 +264,5 @@ def dance_task(
         max_tilt=max_tilt,
         min_height=min_height,
         music=MUSIC_TERMINALS,
+        low=low,
     )

@@ -43,6 +43,7 @@ __all__ = [
     "DANCE_STYLE",
     "LIMBO_BOARD_TOP",
     "LIMBO_SHARE",
+    "LUXO_LYING",
     "STYLE",
     "TASKS",
     "TERMS",
@@ -93,12 +94,36 @@ def luxo_hop(target: float = 1.0, *, seconds: float = 5.0) -> Task:
     )
 
 
+LUXO_LYING = 0.2
+"""A dancing lamp whose shade is lower than this, m, is down (standing, it is at 0.40 m):
+without it, a lamp lying on its side and beating its shade on the floor stayed "up"."""
+
+
 def luxo_dance(*, seconds: float = 10.0) -> Task:
     """Dance to the song: the lamp's three joints' motion must pause on the beats, with
-    style for staying up, near where it started, using all three joints, smoothly
-    (`dance_task`). The controller hears the song beside the hop's sensors."""
-    return dance_task("luxo-dance", luxo(), ("base_hinge", "elbow", "neck"), LUXO_SENSORS,
-                      spot=("root_x",), seconds=seconds)  # fmt: skip
+    style for staying up (its shade above `LUXO_LYING`), near where it started, using all
+    three joints, smoothly (`dance_task`). The controller hears the song beside the hop's
+    sensors."""
+    figure = _with_sites(luxo(), {"shade": ("head", (0, 0, 0))})
+    return dance_task("luxo-dance", figure, ("base_hinge", "elbow", "neck"), LUXO_SENSORS,
+                      spot=("root_x",), seconds=seconds, low=("z_shade", LUXO_LYING))  # fmt: skip
+
+
+def _with_sites(figure: Figure, sites: Mapping[str, tuple[str, tuple[float, ...]]]) -> Figure:
+    """``figure`` with tracked sites: name → (body, position in the body's frame, m)."""
+    root = ET.fromstring(figure.xml)
+    for site, (body, pos) in sites.items():
+        element = root.find(f".//body[@name='{body}']")
+        assert element is not None
+        ET.SubElement(element, "site", {"name": site, "pos": fmt(*pos), "size": "0.02"})
+    return Figure.from_mjcf(
+        ET.tostring(root, encoding="unicode"),
+        name=figure.name,
+        base_bodies=figure.base_bodies,
+        head_bodies=figure.head_bodies,
+        sites=tuple(sites),
+        limb_bodies=figure.limb_bodies,
+    )
 
 
 HUMANOID_DANCE = ("neck", "shoulder_l", "elbow_l", "shoulder_r", "elbow_r")
@@ -200,23 +225,8 @@ def humanoid_reach(
     floor forces, its hand's position, time, and the hand-to-target vector
     (``gx``, ``gz``).
     """
-    person = humanoid()
-    root = ET.fromstring(person.xml)
-    for body, site, pos in (
-        ("forearm_r", "hand_r", (0, 0, -0.305)),
-        ("head", "nose", (0.1, 0, 0.1)),
-    ):
-        element = root.find(f".//body[@name='{body}']")
-        assert element is not None
-        ET.SubElement(element, "site", {"name": site, "pos": fmt(*pos), "size": "0.02"})
-    figure = Figure.from_mjcf(
-        ET.tostring(root, encoding="unicode"),
-        name="humanoid",
-        base_bodies=person.base_bodies,
-        head_bodies=person.head_bodies,
-        sites=("hand_r", "nose"),
-        limb_bodies=person.limb_bodies,
-    )
+    figure = _with_sites(humanoid(), {"hand_r": ("forearm_r", (0, 0, -0.305)),
+                                      "nose": ("head", (0.1, 0, 0.1))})  # fmt: skip
     nose = target == "nose"
     if not nose and (isinstance(target, str) or len(target) != 2):
         raise FigureError(f"humanoid-reach: the target is 'nose' or x,z, got {target!r}")

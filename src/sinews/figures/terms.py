@@ -23,8 +23,9 @@ The terms (`TERMS`), each **higher is better** (penalties are ≤ 0), as
   arrived, m. "Penalty for excess movement after the goal was met."
 - ``head``: minus the fraction of ticks with any contact on a head body.
 - ``fallen``: minus the fraction of ticks the figure is down ("falling
-  over"): its root tilted beyond ``max_tilt``, lower than ``min_height``, or
-  any of its limb bodies (a lamp's arms; a person's trunk, arms and legs)
+  over"): its root tilted beyond ``max_tilt``, lower than ``min_height``,
+  the task's ``low`` column under its value (a dancing lamp's shade), or any
+  of its limb bodies (a lamp's arms; a person's trunk, arms and legs)
   touching the floor.
 - ``neutral``: minus the mean |angle − neutral| of the driven joints at the
   end, rad. "Bonus for ending with joints at neutral angles."
@@ -95,6 +96,7 @@ class TaskMeter:
         self._touch = _force_columns(figure, figure.touch_bodies)
         self._limbs = _force_columns(figure, figure.limb_bodies)
         self._root = index("root_z"), index(figure.tilt_column)
+        self._low = None if task.low is None else (index(task.low[0]), task.low[1])
         self._q = [index(f"q_{j}") for j in figure.joints]
         self._dq = [index(f"dq_{j}") for j in figure.joints]
         self._driven = task.actuators
@@ -146,6 +148,8 @@ class TaskMeter:
         self._touch_ticks += _touching(sensors, self._touch)
         z, pitch = sensors[:, self._root[0]], sensors[:, self._root[1]]
         tilted = (np.abs(pitch) > self.task.max_tilt) | (z < self.task.min_height)
+        if self._low is not None:
+            tilted |= sensors[:, self._low[0]] < self._low[1]
         self._fallen_ticks += tilted | _touching(sensors, self._limbs)
         q, dq = sensors[:, self._q], sensors[:, self._dq]
         self._energy += self._power * (t - self._last_t)  # power held since the last tick

@@ -29,7 +29,6 @@ from sinews.experiments.figures import (
     FIGURES,
     dance_seconds,
     dance_song,
-    make_figure,
     read_keep_file,
 )
 from sinews.experiments.gp.run import default_phase_in
@@ -233,7 +232,7 @@ class SpringNetKind:
 
         motion = recall(log, record_hz, [row.tobytes() for row in genes], simulated)
         nets = settings.encoding.decode(genes[:, : settings.encoding.size])
-        figure = make_figure(settings.figure)
+        figure = settings.simulated_figure
         outputs = settings.outputs(figure)
         labels = [figure.joints[a] for a in settings.driven(figure)]
         replays = []
@@ -257,7 +256,7 @@ class SpringNetKind:
         """The net as JSON: its genes, the decoded masses, springs and positions, the wiring."""
         settings = _settings(store.run(individual.run_id))
         genes = np.asarray(individual.genome, dtype=np.float64)[None]
-        controller = settings.controller(make_figure(settings.figure), genes)
+        controller = settings.controller(settings.simulated_figure, genes)
         net = controller.genome
         return {
             "kind": "springnet",

@@ -127,6 +127,12 @@ class SpringNetSettings:
         return make_task(DANCE_FIGURES[self.figure], seconds=self.seconds)
 
     @cached_property
+    def simulated_figure(self) -> Figure:
+        """The figure the nets drive: a dance's (with the sites its terms read) or the plain
+        one (a site has no mass: the motion is the same)."""
+        return make_figure(self.figure) if self.dance is None else self.dance.figure
+
+    @cached_property
     def music(self) -> MusicFeatures | None:
         """The song's analysis (None without a song); see `heard_song`."""
         return None if self.song_path is None else heard_song(self.song_path, self.song_hash)

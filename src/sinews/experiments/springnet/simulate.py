@@ -12,7 +12,6 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from sinews.experiments.figures import make_figure
 from sinews.experiments.springnet.settings import SpringNetSettings
 from sinews.figures import Observer, RolloutResult, rollout
 
@@ -44,7 +43,7 @@ def simulate(
         The rollout and, when recording, (T, P, n) every net's mass positions
         at the recorded frames (else None).
     """
-    figure = make_figure(settings.figure)
+    figure = settings.simulated_figure
     controller = settings.controller(figure, genes)
     ticks: list[FloatArray] = []
 
