@@ -159,3 +159,11 @@ def test_a_dancing_net_drives_only_the_dances_joints(song: Path) -> None:
     assert figure.joints[held[0]] == "waist" and held.size == 7  # the waist and the legs
     result, _ = simulate(settings, genes)
     assert not result.failed.any()
+
+
+def test_only_a_dance_stores_its_tempi(song: Path) -> None:
+    plain = SpringNetSettings.from_values({"figure": "luxo", "seconds": 1.0, "control_hz": 100})
+    assert "tempi" not in plain.to_dict() and plain.tempi == (1.0,)
+    dance = _dance_settings(song, 3.0, tempi="1.25")
+    assert dance.to_dict()["tempi"] == [1.0, 1.25]
+    assert SpringNetSettings.from_values(dance.to_dict()) == dance

@@ -116,7 +116,7 @@ class SpringNetSettings:
             "task": self.task,
             "song_path": self.song_path,
             "song_hash": self.song_hash,
-            "tempi": list(self.tempi),
+            **({} if self.task is None else {"tempi": list(self.tempi)}),  # a dance's only
         }
 
     @cached_property
