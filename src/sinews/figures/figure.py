@@ -137,6 +137,29 @@ class Figure:
             model.opt.timestep = timestep
         return model
 
+    def edited(
+        self,
+        mjcf: ET.Element,
+        *,
+        sites: Sequence[str] = (),
+        touch_bodies: Sequence[str] = (),
+        floor_only: Sequence[str] = (),
+    ) -> Figure:
+        """This figure again from its edited MJCF (``ET.fromstring(self.xml)`` with a target
+        or a pole added, say), sensing ``sites`` besides its own and ``touch_bodies``; the
+        same name, root, base, head and limb bodies (see `from_mjcf`)."""
+        return Figure.from_mjcf(
+            ET.tostring(mjcf, encoding="unicode"),
+            name=self.name,
+            base_bodies=self.base_bodies,
+            head_bodies=self.head_bodies,
+            touch_bodies=touch_bodies,
+            sites=(*self.sites, *sites),
+            limb_bodies=self.limb_bodies,
+            root=self.root,
+            floor_only=floor_only,
+        )
+
     @classmethod
     def from_mjcf(
         cls,

@@ -116,14 +116,7 @@ def _with_sites(figure: Figure, sites: Mapping[str, tuple[str, tuple[float, ...]
         element = root.find(f".//body[@name='{body}']")
         assert element is not None
         ET.SubElement(element, "site", {"name": site, "pos": fmt(*pos), "size": "0.02"})
-    return Figure.from_mjcf(
-        ET.tostring(root, encoding="unicode"),
-        name=figure.name,
-        base_bodies=figure.base_bodies,
-        head_bodies=figure.head_bodies,
-        sites=tuple(sites),
-        limb_bodies=figure.limb_bodies,
-    )
+    return figure.edited(root, sites=tuple(sites))
 
 
 HUMANOID_DANCE = ("neck", "shoulder_l", "elbow_l", "shoulder_r", "elbow_r")
@@ -195,14 +188,7 @@ def luxo_limbo(
     ET.SubElement(pole, "geom", {"name": "board", "type": "box", **collide,
                                  "size": fmt(pole_radius / 2, 0.3, board),
                                  "pos": fmt(0, 0, pole_radius + board)})  # fmt: skip
-    figure = Figure.from_mjcf(
-        ET.tostring(root, encoding="unicode"),
-        name="luxo",
-        base_bodies=lamp.base_bodies,
-        head_bodies=lamp.head_bodies,
-        touch_bodies=("pole",),
-        limb_bodies=lamp.limb_bodies,
-    )
+    figure = lamp.edited(root, touch_bodies=("pole",))
     return Task(
         name="luxo-limbo",
         figure=figure,

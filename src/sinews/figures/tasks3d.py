@@ -191,19 +191,10 @@ def _refigure(
     sites: tuple[str, ...] = (),
     touch_bodies: tuple[str, ...] = (),
 ) -> Figure:
-    """``figure`` again from its edited MJCF, with further sensed sites and touch bodies."""
-    head = figure.head_bodies
-    return Figure.from_mjcf(
-        ET.tostring(root, encoding="unicode"),
-        name=figure.name,
-        base_bodies=figure.base_bodies,
-        head_bodies=head,
-        touch_bodies=touch_bodies,
-        sites=(*figure.sites, *sites),
-        limb_bodies=figure.limb_bodies,
-        root="free",
-        floor_only=head if figure.name == "humanoid3d" else (),
-    )
+    """``figure`` again from its edited MJCF (a 3D person's head feels only the floor: its
+    own hand may touch it)."""
+    head = figure.head_bodies if figure.name == "humanoid3d" else ()
+    return figure.edited(root, sites=sites, touch_bodies=touch_bodies, floor_only=head)
 
 
 # -- the humanoid --------------------------------------------------------------

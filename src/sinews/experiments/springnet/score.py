@@ -44,12 +44,13 @@ def score_chunk(context: ChunkContext[SpringNetSettings], genes: FloatArray) -> 
                                nthread=context.nthread)  # fmt: skip
         terms, failed = distance_travelled(result)[:, None], result.failed.copy()
     else:  # the song at each tempo; the motion kept is the song's own (tempi[0] = 1.0)
-        (terms, result, net), *others = [
+        danced = [
             _dance(context, genes, rate, record_hz=None if k else context.record_hz)
             for k, rate in enumerate(settings.tempi)
         ]
-        terms = np.mean([terms, *(t for t, _, _ in others)], axis=0)
-        failed = np.logical_or.reduce([result.failed, *(r.failed for _, r, _ in others)])
+        _, result, net = danced[0]
+        terms = np.mean([t for t, _, _ in danced], axis=0)
+        failed = np.logical_or.reduce([r.failed for _, r, _ in danced])
     motion = () if net is None else motion_records(result, net)
     return Scores(terms=terms, failed=failed, motion=motion)
 
