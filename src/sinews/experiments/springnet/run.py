@@ -94,8 +94,7 @@ class SpringNetKind:
                    "by --song), or none for the paper's distance."),
         KindOption("song", str, "Spring-net dance: the song file, or demo:groove / demo:sway."),
         KindOption("tempi", str, "Spring-net dance: also dance the song played at these rates "
-                   "(e.g. 0.8,1.25; each term counts at its worst rate), so no period of the net's "
-                   "own pays."),
+                   "(e.g. 0.8,1.25; fitness is the mean), so no period of the net's own pays."),
     )  # fmt: skip
     defaults = DEFAULTS
     summary = "spring nets that move it as far as they can (|x_end - x_start|)"

@@ -34,9 +34,9 @@ def score_chunk(context: ChunkContext[SpringNetSettings], genes: FloatArray) -> 
     """The evaluator's work unit: simulate a chunk of (k, G) nets and measure the distance.
 
     Returns:
-        Scores with one term column, ``distance`` (m), or a dance's terms, each at its
-        worst over the `tempi` (terms are higher-is-better; failed at any tempo is failed);
-        a net's numbers depend only on its genes and the settings.
+        Scores with one term column, ``distance`` (m), or a dance's terms (the means over
+        its `tempi`; failed at any tempo is failed); a net's numbers depend only on its
+        genes and the settings.
     """
     settings = context.settings
     if settings.dance is None:
@@ -49,7 +49,7 @@ def score_chunk(context: ChunkContext[SpringNetSettings], genes: FloatArray) -> 
             for k, rate in enumerate(settings.tempi)
         ]
         _, result, net = danced[0]
-        terms = np.min([t for t, _, _ in danced], axis=0)
+        terms = np.mean([t for t, _, _ in danced], axis=0)
         failed = np.logical_or.reduce([r.failed for _, r, _ in danced])
     motion = () if net is None else motion_records(result, net)
     return Scores(terms=terms, failed=failed, motion=motion)

@@ -52,9 +52,8 @@ class SpringNetSettings:
         song_path: a dance's song file.
         song_hash: its SHA-256, checked whenever the song is read again.
         tempi: a dance's playback rates, 1.0 (the song as it is) first: every net dances
-            the song at each rate (`MusicFeatures.played_at`) and each term counts at its
-            worst rate, so a net that swings at one period of its own scores as badly as it
-            dances off that period.
+            the song at each rate (`MusicFeatures.played_at`) and its terms are the means,
+            so a net that swings at one period of its own cannot score on all of them.
     """
 
     figure: str
