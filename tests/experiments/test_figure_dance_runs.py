@@ -165,6 +165,7 @@ def test_a_dance_renders_with_its_song(folder: Path, dance: tuple[str, str, Path
             "tempi must be between 0.5 and 2",
         ),
         (["luxo", "--controller", "springnet", "--tempi", "0.8"], "tempi are for a dance"),
+        (["luxo", "--controller", "springnet", "--drive", "90"], "a drive is for a dance"),
     ],
 )
 def test_bad_dances_are_one_line(folder: Path, command: list[str], message: str) -> None:

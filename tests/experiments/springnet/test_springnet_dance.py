@@ -46,6 +46,7 @@ def test_drive_genes_weigh_only_the_drive_columns() -> None:
     np.testing.assert_allclose(weights[0][:, columns], expected)
     weights[0][:, columns] = 0.0
     assert not weights.any()
+    np.testing.assert_allclose(drive_weights(genes, 2, 5, 90.0)[0][:, columns], expected * 3)
 
 
 def test_dominant_period_finds_the_strongest_swing() -> None:
@@ -161,9 +162,26 @@ def test_a_dancing_net_drives_only_the_dances_joints(song: Path) -> None:
     assert not result.failed.any()
 
 
-def test_only_a_dance_stores_its_tempi(song: Path) -> None:
+def test_only_a_dance_stores_its_tempi_and_drive(song: Path) -> None:
     plain = SpringNetSettings.from_values({"figure": "luxo", "seconds": 1.0, "control_hz": 100})
     assert "tempi" not in plain.to_dict() and plain.tempi == (1.0,)
-    dance = _dance_settings(song, 3.0, tempi="1.25")
-    assert dance.to_dict()["tempi"] == [1.0, 1.25]
+    assert "drive" not in plain.to_dict() and plain.drive == DRIVE_FORCE
+    dance = _dance_settings(song, 3.0, tempi="1.25", drive=90)
+    assert dance.to_dict()["tempi"] == [1.0, 1.25] and dance.to_dict()["drive"] == 90.0
     assert SpringNetSettings.from_values(dance.to_dict()) == dance
+    older = {k: v for k, v in dance.to_dict().items() if k != "drive"}  # stored before drive
+    assert SpringNetSettings.from_values(older).drive == DRIVE_FORCE
+
+
+def test_a_harder_drive_pushes_the_masses_harder(song: Path) -> None:
+    genes = np.random.default_rng(6).random((2, _dance_settings(song, 3.0).genome_size))
+    figure = make_figure("luxo")
+    soft, hard = (_dance_settings(song, 3.0, drive=d).controller(figure, genes) for d in (30, 90))
+    assert soft.input_weights is not None and hard.input_weights is not None
+    np.testing.assert_allclose(hard.input_weights, 3 * soft.input_weights)
+
+
+@pytest.mark.parametrize("value", [0, -5, float("nan"), float("inf"), 1001, "hard", True])
+def test_bad_drives_are_refused(song: Path, value: object) -> None:
+    with pytest.raises(SinewsError, match="drive"):
+        _dance_settings(song, 3.0, drive=value)

@@ -1,7 +1,8 @@
 """Entrained spring nets: the music pushes chosen masses, so a net can lock to the beat.
 
 A dancing net's genes are the net's (`SpringNetEncoding`) followed by one drive weight
-per mass and `DRIVE` column, each gene u in [0, 1] a weight ``(2u − 1) · DRIVE_FORCE``.
+per mass and `DRIVE` column, each gene u in [0, 1] a weight ``(2u − 1) · drive`` (the
+run's largest drive weight, `DRIVE_FORCE` unless set).
 Every tick mass i feels ``f_i = Σ_d w_id · music_d`` (the net's input forces, seed 001's
 "applying forces to the point masses"), read from the song's `MUSIC_TERMINALS` after
 the figure's sensors (`MusicInput`). The fitness is the figure's dance (`DANCE_FIGURES`,
@@ -18,7 +19,9 @@ import numpy.typing as npt
 
 from sinews.control.music_input import MUSIC_TERMINALS
 
-__all__ = ["DANCE_FIGURES", "DRIVE", "DRIVE_FORCE", "dominant_period", "drive_weights"]
+__all__ = [
+    "DANCE_FIGURES", "DRIVE", "DRIVE_FORCE", "MAX_DRIVE_FORCE", "dominant_period", "drive_weights",
+]  # fmt: skip
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -28,19 +31,24 @@ a beat. (A band level would too, but its mean is a constant push that sends the 
 accelerating away: measured, an evolved net with a bass drive drifted off on 5 of 6
 songs.)"""
 DRIVE_FORCE = 30.0
-"""The largest drive weight (force per unit of music)."""
+"""The largest drive weight (force per unit of music) unless a run sets its own."""
+MAX_DRIVE_FORCE = 1000.0
+"""The largest a run may set."""
 DANCE_FIGURES = {"luxo": "luxo-dance", "snake": "snake-dance", "humanoid": "humanoid-dance"}
 """Figures whose spring nets can dance, and their dance task (its joints are the ones the
 nets drive; the others hold their neutral angles)."""
 
 
-def drive_weights(genes: FloatArray, n_masses: int, n_sensors: int) -> FloatArray:
-    """(P, n, S + M) input weights from (P, n · len(DRIVE)) drive genes in [0, 1].
+def drive_weights(
+    genes: FloatArray, n_masses: int, n_sensors: int, force: float = DRIVE_FORCE
+) -> FloatArray:
+    """(P, n, S + M) input weights from (P, n · len(DRIVE)) drive genes in [0, 1], each
+    in [-force, force].
 
     Zero on the S sensor columns and on the music columns outside `DRIVE`.
     """
     weights = np.zeros((len(genes), n_masses, n_sensors + len(MUSIC_TERMINALS)))
-    drive = (2.0 * np.asarray(genes, dtype=np.float64) - 1.0) * DRIVE_FORCE
+    drive = (2.0 * np.asarray(genes, dtype=np.float64) - 1.0) * force
     columns = [n_sensors + MUSIC_TERMINALS.index(name) for name in DRIVE]
     weights[:, :, columns] = drive.reshape(len(genes), n_masses, len(DRIVE))
     return weights

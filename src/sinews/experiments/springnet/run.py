@@ -41,7 +41,7 @@ from sinews.experiments.kinds import (
 )
 from sinews.experiments.motion_log import MotionLog, recall
 from sinews.experiments.run_config import EvolutionConfig, build_config
-from sinews.experiments.springnet.dance import DANCE_FIGURES
+from sinews.experiments.springnet.dance import DANCE_FIGURES, DRIVE_FORCE
 from sinews.experiments.springnet.score import SpringNetScorer, motion_records
 from sinews.experiments.springnet.settings import TERMS, SpringNetSettings, tempi_of
 from sinews.experiments.springnet.simulate import simulate
@@ -71,10 +71,12 @@ DEFAULTS: dict[str, Any] = {
     "task": None,
     "song": None,
     "tempi": None,
+    "drive": None,
 }
 """The paper's largest run (20 generations of 2000 nets, 5 s trials) unless told otherwise."""
 _KIND_KEYS = (
     "figure", "seconds", "masses", "physics_hz", "control_hz", "keep", "task", "song", "tempi",
+    "drive",
 )  # fmt: skip
 
 
@@ -95,6 +97,8 @@ class SpringNetKind:
         KindOption("song", str, "Spring-net dance: the song file, or demo:groove / demo:sway."),
         KindOption("tempi", str, "Spring-net dance: also dance the song played at these rates "
                    "(e.g. 0.8,1.25; fitness is the mean), so no period of the net's own pays."),
+        KindOption("drive", float, "Spring-net dance: the largest force the beat may push a "
+                   f"mass with (default {DRIVE_FORCE:g})."),
     )  # fmt: skip
     defaults = DEFAULTS
     summary = "spring nets that move it as far as they can (|x_end - x_start|)"

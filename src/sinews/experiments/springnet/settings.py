@@ -16,7 +16,13 @@ from sinews.control.springnet import SpringNetController
 from sinews.errors import SinewsError
 from sinews.evolve.alton import SpringNetEncoding
 from sinews.experiments.figures import FIGURES, heard_song, make_figure
-from sinews.experiments.springnet.dance import DANCE_FIGURES, DRIVE, drive_weights
+from sinews.experiments.springnet.dance import (
+    DANCE_FIGURES,
+    DRIVE,
+    DRIVE_FORCE,
+    MAX_DRIVE_FORCE,
+    drive_weights,
+)
 from sinews.figures import Figure
 from sinews.figures.tasks import Task, make_task
 from sinews.limits import MAX_MASSES, check_whole
@@ -54,6 +60,8 @@ class SpringNetSettings:
         tempi: a dance's playback rates, 1.0 (the song as it is) first: every net dances
             the song at each rate (`MusicFeatures.played_at`) and its terms are the means,
             so a net that swings at one period of its own cannot score on all of them.
+        drive: a dance's largest drive weight (force per unit of music): how hard the
+            beat may push the masses against the springs.
     """
 
     figure: str
@@ -65,6 +73,7 @@ class SpringNetSettings:
     song_path: str | None = None
     song_hash: str | None = None
     tempi: tuple[float, ...] = (1.0,)
+    drive: float = DRIVE_FORCE
 
     @classmethod
     def from_values(cls, values: Mapping[str, Any]) -> SpringNetSettings:
@@ -92,6 +101,7 @@ class SpringNetSettings:
             song_path=values.get("song_path"),
             song_hash=values.get("song_hash"),
             tempi=tempi_of(values.get("tempi")),
+            drive=_drive(values.get("drive")),
         )
         if settings.physics_hz % settings.control_hz:
             raise SinewsError("control_hz must divide physics_hz")
@@ -103,6 +113,8 @@ class SpringNetSettings:
             raise SinewsError("a dance needs a song (--song), and only a dance hears one")
         if settings.task is None and settings.tempi != (1.0,):
             raise SinewsError("tempi are for a dance (--task dance)")
+        if settings.task is None and settings.drive != DRIVE_FORCE:
+            raise SinewsError("a drive is for a dance (--task dance)")
         return settings
 
     def to_dict(self) -> dict[str, Any]:
@@ -116,7 +128,7 @@ class SpringNetSettings:
             "task": self.task,
             "song_path": self.song_path,
             "song_hash": self.song_hash,
-            **({} if self.task is None else {"tempi": list(self.tempi)}),  # a dance's only
+            **({} if self.task is None else {"tempi": list(self.tempi), "drive": self.drive}),
         }
 
     @cached_property
@@ -174,7 +186,7 @@ class SpringNetSettings:
         size = self.encoding.size
         drive = None
         if self.task is not None:
-            drive = drive_weights(genes[:, size:], self.masses, figure.n_sensors)
+            drive = drive_weights(genes[:, size:], self.masses, figure.n_sensors, self.drive)
         return SpringNetController(
             self.encoding.decode(genes[:, :size]),
             outputs=outputs,
@@ -225,6 +237,17 @@ def tempi_of(value: object) -> tuple[float, ...]:
     if len(tempi) > MAX_TEMPI:
         raise SinewsError(f"at most {MAX_TEMPI} tempi (the song's own among them)")
     return tempi
+
+
+def _drive(value: object) -> float:
+    """A dance's largest drive weight from a run file, ``--drive`` or a stored config
+    (`DRIVE_FORCE` when not given)."""
+    if value is None:
+        return DRIVE_FORCE
+    force = _number(value, "drive")
+    if force > MAX_DRIVE_FORCE:
+        raise SinewsError(f"drive must be at most {MAX_DRIVE_FORCE:g}, got {value!r}")
+    return force
 
 
 def _number(value: object, name: str) -> float:
