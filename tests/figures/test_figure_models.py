@@ -89,6 +89,25 @@ def test_luxo_edges_follow_the_chain() -> None:
     assert figure.edges.tolist() == [[0, 1], [1, 2], [2, 3]]
 
 
+def test_each_model_is_a_fresh_copy_that_steps_as_a_compiled_one() -> None:
+    import mujoco
+
+    figure = luxo()
+    first, second = figure.model(timestep=0.002), figure.model()
+    assert first.opt.timestep == 0.002 and second.opt.timestep != 0.002  # copies, not shared
+    first.geom_friction[:] = 0.0
+    assert figure.model().geom_friction.any()
+    compiled = mujoco.MjModel.from_xml_string(figure.xml)
+    states = []
+    for model in (figure.model(), compiled):
+        data = mujoco.MjData(model)
+        data.ctrl[:] = 0.3
+        for _ in range(200):
+            mujoco.mj_step(model, data)
+        states.append(data.qpos.copy())
+    np.testing.assert_array_equal(*states)
+
+
 def test_from_mjcf_accepts_a_users_figure_and_its_own_output() -> None:
     xml = """<mujoco><compiler angle="radian"/><worldbody>
       <geom name="floor" type="plane" size="1 1 0.1"/>

@@ -25,6 +25,8 @@ figure rests in.
 
 from __future__ import annotations
 
+import copy
+import functools
 import xml.etree.ElementTree as ET
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -131,8 +133,9 @@ class Figure:
             raise FigureError(f"{self.name} has no sensor column {column!r}") from None
 
     def model(self, timestep: float | None = None) -> mujoco.MjModel:
-        """Compile a fresh MuJoCo model, optionally with another physics step (seconds)."""
-        model = _compile(self.xml)
+        """A fresh MuJoCo model of its own, optionally with another physics step (seconds): a
+        copy of the figure's compiled model (copying is ~10x faster than compiling)."""
+        model = copy.deepcopy(_compiled(self.xml))
         if timestep is not None:
             model.opt.timestep = timestep
         return model
@@ -219,7 +222,7 @@ class Figure:
         ]
         limbs_only += [b for b in floor_only if b in contact and b not in limbs_only]
         xml = _with_sensors(xml, contact, sites, on_floor=limbs_only)
-        model = _compile(xml)
+        model = _compiled(xml)  # read only here
         joints, kp, kv = _servos(model, name, first_joint=1 if root == "free" else 3)
         qpos0 = np.array([model.qpos0[model.joint(j).qposadr[0]] for j in joints])
         rest = qpos0 if neutral is None else np.array(neutral, dtype=np.float64)
@@ -250,6 +253,12 @@ class Figure:
             limb_bodies=tuple(limb_bodies),
             root=root,
         )
+
+
+@functools.lru_cache(maxsize=32)
+def _compiled(xml: str) -> mujoco.MjModel:
+    """The model compiled from ``xml``, kept for copying: never hand it out or change it."""
+    return _compile(xml)
 
 
 def _compile(xml: str) -> mujoco.MjModel:
