@@ -166,6 +166,20 @@ def test_a_dance_renders_with_its_song(folder: Path, dance: tuple[str, str, Path
         ),
         (["luxo", "--controller", "springnet", "--tempi", "0.8"], "tempi are for a dance"),
         (["luxo", "--controller", "springnet", "--drive", "90"], "a drive is for a dance"),
+        (
+            [
+                "luxo",
+                "--controller",
+                "springnet",
+                "--task",
+                "dance",
+                "--song",
+                "song.wav",
+                "--drive",
+                "1e9",
+            ],
+            "drive must be at most 1000",
+        ),
     ],
 )
 def test_bad_dances_are_one_line(folder: Path, command: list[str], message: str) -> None:
