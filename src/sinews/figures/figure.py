@@ -77,6 +77,9 @@ class Figure:
         sites: sites whose world x and z are sensor columns (e.g. a hand); with a
             free root their x, y, z and their place in the heading frame.
         root: ``"planar"`` (slide x, slide z, hinge y) or ``"free"`` (3D).
+        heading_joint: with a free root, an actuated hinge about the root's vertical (a
+            lamp's swivel) whose angle turns the heading frame: the figure heads where
+            the part above it points. ``None``: the root's own heading.
     """
 
     name: str
@@ -95,6 +98,7 @@ class Figure:
     sites: tuple[str, ...] = ()
     limb_bodies: tuple[str, ...] = ()
     root: str = "planar"
+    heading_joint: str | None = None
 
     @property
     def n_actuators(self) -> int:
@@ -161,6 +165,7 @@ class Figure:
             limb_bodies=self.limb_bodies,
             root=self.root,
             floor_only=floor_only,
+            heading_joint=self.heading_joint,
         )
 
     @classmethod
@@ -177,6 +182,7 @@ class Figure:
         limb_bodies: Sequence[str] = (),
         root: str = "planar",
         floor_only: Sequence[str] = (),
+        heading_joint: str | None = None,
     ) -> Figure:
         """Make a figure from MJCF text with a planar (or free) root and position servos.
 
@@ -193,6 +199,7 @@ class Figure:
             root: ``"planar"`` or ``"free"`` (the first body's first joint is free).
             floor_only: further contact bodies whose sensors feel only the floor
                 (e.g. a 3D person's head, which its own hand may touch).
+            heading_joint: see the attribute (free root only).
 
         Returns:
             The figure, whose MJCF has a contact sensor per base/head/touch body
@@ -224,6 +231,8 @@ class Figure:
         xml = _with_sensors(xml, contact, sites, on_floor=limbs_only)
         model = _compiled(xml)  # read only here
         joints, kp, kv = _servos(model, name, first_joint=1 if root == "free" else 3)
+        if heading_joint is not None and (root != "free" or heading_joint not in joints):
+            raise FigureError(f"{name}: the heading joint must be an actuated joint of a free root")
         qpos0 = np.array([model.qpos0[model.joint(j).qposadr[0]] for j in joints])
         rest = qpos0 if neutral is None else np.array(neutral, dtype=np.float64)
         if rest.shape != (len(joints),) or not np.isfinite(rest).all():
@@ -252,6 +261,7 @@ class Figure:
             sites=tuple(sites),
             limb_bodies=tuple(limb_bodies),
             root=root,
+            heading_joint=heading_joint,
         )
 
 

@@ -22,6 +22,7 @@ the head points down and forward (the planar lamp's pose), and the heading
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from sinews.figures.figure import Figure
@@ -59,7 +60,10 @@ class LuxoShape3D:
     masses: tuple[float, float, float, float] = (0.6, 0.15, 0.15, 0.25)
     rest_angles: tuple[float, float, float] = (-0.4, 1.2, 1.4)
     joint_range: tuple[float, float, float] = (1.2, 1.5, 1.2)
-    neck_axis: str = "twist"
+    neck_axis: str = "fixed"
+    swivel: bool = True
+    swivel_range: float = 2.8
+    swivel_servo: Servo = Servo("swivel", kp=10.0, kv=0.5, torque=5.0)
     servos: tuple[Servo, Servo, Servo] = (
         Servo("base_hinge", kp=30.0, kv=1.5, torque=20.0),
         Servo("elbow", kp=20.0, kv=0.8, torque=15.0),
@@ -87,6 +91,10 @@ def luxo3d_mjcf(shape: LuxoShape3D = LuxoShape3D(), *, friction: float = 1.0) ->
             <geom name="head" {head} mass="{fmt(m_head)}" euler="0 {fmt(a_neck)} 0"
                   material="accent"/>
           </body>"""
+    elif shape.neck_axis == "fixed":
+        head_body = f"""<body name="head" pos="0 0 {fmt(length)}" euler="0 {fmt(a_neck)} 0">
+            <geom name="head" {head} mass="{fmt(m_head)}" material="accent"/>
+          </body>"""
     elif shape.neck_axis == "pitch":
         neck = hinge3d("neck", (0, 1, 0), -r_neck, r_neck)
         head_body = f"""<body name="head" pos="0 0 {fmt(length)}" euler="0 {fmt(a_neck)} 0">
@@ -95,6 +103,12 @@ def luxo3d_mjcf(shape: LuxoShape3D = LuxoShape3D(), *, friction: float = 1.0) ->
           </body>"""
     else:
         raise ValueError(f"neck_axis is 'twist' or 'pitch', not {shape.neck_axis!r}")
+    swivel = ""
+    if shape.swivel:
+        # the first of the lower arm's two joints turns it about the base's vertical (the body
+        # frame leans by the rest pitch, so the axis is the vertical seen from that frame)
+        up = (-math.sin(a_lower), 0.0, math.cos(a_lower))
+        swivel = hinge3d("swivel", up, -shape.swivel_range, shape.swivel_range) + "\n        "
     body = f"""<body name="base" pos="0 0 {fmt(half)}">
       {FREE_ROOT}
       <geom name="base" type="cylinder" size="{fmt(shape.base_radius, half)}"
@@ -102,7 +116,7 @@ def luxo3d_mjcf(shape: LuxoShape3D = LuxoShape3D(), *, friction: float = 1.0) ->
       <site name="base_front" pos="{fmt(shape.base_radius * 0.8, 0, half)}" size="0.012"
             rgba="0.1 0.1 0.1 1"/>
       <body name="arm_lower" pos="0 0 {fmt(half)}" euler="0 {fmt(a_lower)} 0">
-        {hinge3d("base_hinge", (0, 1, 0), -r_base, r_base)}
+        {swivel}{hinge3d("base_hinge", (0, 1, 0), -r_base, r_base)}
         <geom name="arm_lower" {arm} mass="{fmt(m_lower)}"/>
         <body name="arm_upper" pos="0 0 {fmt(length)}" euler="0 {fmt(a_elbow)} 0">
           {hinge3d("elbow", (0, 1, 0), -r_elbow, r_elbow)}
@@ -113,6 +127,10 @@ def luxo3d_mjcf(shape: LuxoShape3D = LuxoShape3D(), *, friction: float = 1.0) ->
     </body>"""
     ranges = (r_base, r_elbow, r_neck)
     servos = [(servo, -r, r) for servo, r in zip(shape.servos, ranges, strict=True)]
+    if shape.neck_axis == "fixed":
+        servos = servos[:2]
+    if shape.swivel:
+        servos.insert(0, (shape.swivel_servo, -shape.swivel_range, shape.swivel_range))
     return document3d("luxo3d", body, servos, friction=friction, extent=1.5)
 
 
@@ -125,4 +143,5 @@ def luxo3d(shape: LuxoShape3D = LuxoShape3D(), *, friction: float = 1.0) -> Figu
         head_bodies=("head",),
         limb_bodies=("arm_lower", "arm_upper"),
         root="free",
+        heading_joint="swivel" if shape.swivel else None,
     )

@@ -24,8 +24,9 @@ A 3D figure (a free root) has `FREE_ROOT_POS` and `FREE_ROOT_VEL` in place of
 the planar root's columns, forces in x, y and z, and per site its world x, y,
 z and then its position relative to the root in the root's **heading frame**
 (``f_``: forward, ``l_``: left, ``u_``: up; the heading is the root body's x
-axis projected on the floor, so the frame turns with the figure but does not
-tip with it). A goal that is a site in the world (a target) then reads as the
+axis projected on the floor, turned by the angle of a *heading joint* if the
+figure has one (a lamp's swivel), so the frame turns with the figure but does
+not tip with it). A goal that is a site in the world (a target) then reads as the
 paper's "position relative to the goal", in the body's frame. See
 `FreeSensorReader`.
 """
@@ -174,6 +175,8 @@ class FreeSensorReader:
         joints: the actuated joints, in actuator order.
         contact_bodies: bodies with a contact sensor (see `contact_sensor_name`).
         sites: sites with a position sensor (see `site_sensor_name`).
+        heading_joint: a hinge about the root's vertical whose angle (and rate) adds to the
+            root's heading (and turning rate), or ``None``.
     """
 
     def __init__(
@@ -182,7 +185,12 @@ class FreeSensorReader:
         joints: Sequence[str],
         contact_bodies: Sequence[str],
         sites: Sequence[str] = (),
+        heading_joint: str | None = None,
     ) -> None:
+        self._turn: tuple[int, int] | None = None
+        if heading_joint is not None:
+            joint = model.joint(heading_joint)
+            self._turn = (int(joint.qposadr[0]), int(joint.dofadr[0]))
         self._rest_z = float(model.qpos0[2])
         self._qpos_index = np.array([model.joint(n).qposadr[0] for n in joints], dtype=np.intp)
         self._qvel_index = np.array([model.joint(n).dofadr[0] for n in joints], dtype=np.intp)
@@ -227,6 +235,8 @@ class FreeSensorReader:
         r12 = 2.0 * (y * z - w * x) / norm
         r22 = 1.0 - 2.0 * (x * x + y * y) / norm
         yaw = np.arctan2(r10, r00)
+        if self._turn is not None:
+            yaw = np.remainder(yaw + qpos[:, self._turn[0]] + np.pi, 2.0 * np.pi) - np.pi
         c, s = np.cos(yaw), np.sin(yaw)
         out[:, 0] = time
         out[:, 1] = qpos[:, 0]
@@ -245,6 +255,8 @@ class FreeSensorReader:
         out[:, v + 3] = c * vx + s * vy
         out[:, v + 4] = c * vy - s * vx
         out[:, v + 5] = r20 * qvel[:, 3] + r21 * qvel[:, 4] + r22 * qvel[:, 5]
+        if self._turn is not None:
+            out[:, v + 5] += qvel[:, self._turn[1]]
         out[:, self._dq : self._force] = qvel[:, self._qvel_index]
         np.negative(sensordata[:, self._force_index], out=out[:, self._force : self._site])
         if len(self._site_index):
@@ -264,7 +276,10 @@ def make_reader(
     contact_bodies: Sequence[str],
     sites: Sequence[str] = (),
     root: str = "planar",
+    heading_joint: str | None = None,
 ) -> SensorReader | FreeSensorReader:
-    """The reader for a figure's root: `SensorReader` (planar) or `FreeSensorReader` (free)."""
-    kind = FreeSensorReader if root == "free" else SensorReader
-    return kind(model, joints, contact_bodies, sites)
+    """The reader for a figure's root: `SensorReader` (planar) or `FreeSensorReader` (free,
+    with its heading joint if any)."""
+    if root == "free":
+        return FreeSensorReader(model, joints, contact_bodies, sites, heading_joint)
+    return SensorReader(model, joints, contact_bodies, sites)

@@ -34,6 +34,7 @@ __all__ = [
     "ARM_L",
     "ARM_R",
     "HUMANOID3D_DANCE",
+    "LUXO3D_JOINTS",
     "LUXO3D_SENSORS",
     "TASKS_3D",
     "humanoid3d_dance",
@@ -46,11 +47,11 @@ __all__ = [
     "luxo3d_limbo",
 ]
 
+LUXO3D_JOINTS = ("swivel", "base_hinge", "elbow")
+"""The 3D lamp's three servoed hinges (`sinews.figures.luxo3d`)."""
 LUXO3D_BODY = (
     "time",
-    "q_base_hinge",
-    "q_elbow",
-    "q_neck",
+    *(f"q_{joint}" for joint in LUXO3D_JOINTS),
     "root_z",
     "root_vf",
     "root_vl",
@@ -102,7 +103,7 @@ def _lamp_task(
         name=name,
         figure=figure,
         goal=Goal(tracked=("root_x", "root_y"), target=target, names=()),
-        joints=("base_hinge", "elbow", "neck"),
+        joints=LUXO3D_JOINTS,
         sensors=LUXO3D_SENSORS,
         weights=weights,
         seconds=seconds,
@@ -180,7 +181,7 @@ def luxo3d_limbo(
 def luxo3d_dance(*, seconds: float = 10.0) -> Task:
     """Dance to the song with the three joints (`sinews.figures.task.dance_task`), near the
     spot on the floor (x, y); the lamp senses itself (`LUXO3D_BODY`) and hears the song."""
-    return dance_task("luxo3d-dance", luxo3d(), ("base_hinge", "elbow", "neck"), LUXO3D_BODY,
+    return dance_task("luxo3d-dance", luxo3d(), LUXO3D_JOINTS, LUXO3D_BODY,
                       spot=("root_x", "root_y"), seconds=seconds)  # fmt: skip
 
 

@@ -28,7 +28,8 @@ The terms (`TERMS`), each **higher is better** (penalties are ≤ 0), as
   of its limb bodies (a lamp's arms; a person's trunk, arms and legs)
   touching the floor.
 - ``neutral``: minus the mean |angle − neutral| of the driven joints at the
-  end, rad. "Bonus for ending with joints at neutral angles."
+  end, rad, leaving out a heading joint (it turns the whole figure). "Bonus
+  for ending with joints at neutral angles."
 - ``energy``: minus the work of the servos, Σ |τ · q̇| Δt over the ticks, J
   (τ from the PD law and each servo's torque limit); off in the built-ins.
 - ``touch``: minus the fraction of ticks with contact on a touch body (the
@@ -100,6 +101,8 @@ class TaskMeter:
         self._q = [index(f"q_{j}") for j in figure.joints]
         self._dq = [index(f"dq_{j}") for j in figure.joints]
         self._driven = task.actuators
+        # the pose the neutral bonus looks at: the heading joint says where, not how, it stands
+        self._posed = [i for i in task.actuators if figure.joints[i] != figure.heading_joint]
         self._torque = np.abs(figure.model().actuator_forcerange).max(axis=1)
         goal = task.goal
         self._origin = [index(c) for c in goal.origin]
@@ -156,8 +159,9 @@ class TaskMeter:
         figure = self.task.figure
         torque = np.clip(figure.kp * (targets - q) - figure.kv * dq, -self._torque, self._torque)
         self._power = np.abs(torque * dq).sum(axis=1)
-        neutral = self.task.figure.neutral[self._driven]
-        self._neutral = np.abs(q[:, self._driven] - neutral).mean(axis=1)
+        if self._posed:
+            neutral = figure.neutral[self._posed]
+            self._neutral = np.abs(q[:, self._posed] - neutral).mean(axis=1)
         self._spot += self._distance
         if self._angles is not None:
             self._angles.append(q[:, self._driven].copy())
