@@ -31,7 +31,7 @@ def person() -> Figure:
 def test_the_lamp_has_four_links_three_hinges_and_a_free_base(lamp: Figure) -> None:
     model = lamp.model()
     assert lamp.root == "free"
-    assert lamp.joints == ("base_hinge", "elbow", "neck")
+    assert lamp.joints == ("swivel", "base_hinge", "elbow") and lamp.heading_joint == "swivel"
     assert model.nbody - 1 == 4  # base, two arms, head
     assert model.nv == 6 + 3 and model.nu == 3
     assert model.jnt_type[0] == 0  # mjJNT_FREE
@@ -122,8 +122,8 @@ def test_a_free_root_is_checked() -> None:
         Figure.from_mjcf(luxo3d_mjcf(), name="x", base_bodies=("base",), root="sideways")
 
 
-def test_the_pitch_neck_lamp_cannot_turn_but_the_twist_neck_can() -> None:
-    """Why the neck twists: with three parallel pitch axes nothing turns the lamp."""
+def test_a_lamp_of_three_pitch_hinges_cannot_turn_but_a_swivel_or_twist_can() -> None:
+    """Why the lamp swivels: with three parallel pitch axes nothing turns it."""
     rng = np.random.default_rng(0)
     n = 16
     amps, phases = rng.uniform(-1.2, 1.2, (n, 3)), rng.uniform(0, 2 * np.pi, (n, 3))
@@ -144,5 +144,41 @@ def test_the_pitch_neck_lamp_cannot_turn_but_the_twist_neck_can() -> None:
         r11 = 1 - 2 * (qx * qx + qz * qz)  # world y of the base's y axis
         return (np.abs(y) + (1 - r11)).max(axis=0)
 
-    assert out_of_plane(luxo3d(LuxoShape3D(neck_axis="pitch"))).max() < 1e-6
+    assert out_of_plane(luxo3d(LuxoShape3D(swivel=False, neck_axis="pitch"))).max() < 1e-6
     assert (out_of_plane(luxo3d()) > 0.1).sum() >= n // 2
+    assert (
+        out_of_plane(luxo3d(LuxoShape3D(swivel=False, neck_axis="twist"))) > 0.1
+    ).sum() >= n // 2
+
+
+def test_the_heading_follows_the_swivel(lamp: Figure) -> None:
+    """Swivel the arm by 0.5 rad on a base facing +x: the lamp heads 0.5 rad left, and a
+    point ahead on the lower arm's x axis lies dead ahead in its frame."""
+    import mujoco
+
+    from sinews.figures.sensors import make_reader
+
+    xml = lamp.xml.replace(
+        '<geom name="arm_lower"', '<site name="tip" pos="0.2 0 0"/><geom name="arm_lower"'
+    )
+    figure = Figure.from_mjcf(xml, name="lamp", base_bodies=("base",), sites=("tip",),
+                              root="free", heading_joint="swivel")  # fmt: skip
+    model = figure.model()
+    data = mujoco.MjData(model)
+    data.qpos[model.joint("swivel").qposadr[0]] = 0.5
+    data.qvel[model.joint("swivel").dofadr[0]] = 2.0
+    mujoco.mj_forward(model, data)
+    reader = make_reader(model, figure.joints, figure.contact_bodies, figure.sites, "free",
+                         "swivel")  # fmt: skip
+    out = np.zeros((1, reader.n_columns))
+    reader.read(out, np.zeros(1), data.qpos[None], data.qvel[None], data.sensordata[None])
+    column = dict(zip(figure.sensor_names, out[0], strict=True))
+    assert column["root_yaw"] == pytest.approx(0.5)
+    assert column["root_wz"] == pytest.approx(2.0)
+    assert column["l_tip"] == pytest.approx(0.0, abs=1e-9) and column["f_tip"] > 0.1
+
+
+def test_only_a_free_roots_actuated_hinge_can_carry_the_heading(lamp: Figure) -> None:
+    with pytest.raises(FigureError, match="heading joint"):
+        Figure.from_mjcf(lamp.xml, name="x", base_bodies=("base",), root="free",
+                         heading_joint="nothing")  # fmt: skip

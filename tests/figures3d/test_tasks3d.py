@@ -70,6 +70,29 @@ def test_the_lamp_sees_the_goal_in_its_heading_frame() -> None:
     assert terms["fallen"] == 0.0 and terms["head"] == 0.0
 
 
+def test_a_lamp_swivelled_to_the_x_sees_it_ahead_and_loses_no_neutral_bonus() -> None:
+    """Hold the swivel at the target's bearing: the X reads dead ahead in the lamp's frame, and
+    ending turned is no departure from the neutral pose (only the arms' pose counts)."""
+    task = make_task("luxo3d-hop", target=(-0.8, 0.8))
+    index = {name: k for k, name in enumerate(task.figure.sensor_names)}
+    meter = TaskMeter(task, 1)
+    sensors = []
+
+    def observe(t: float, columns: np.ndarray, targets: np.ndarray) -> None:
+        meter(t, columns, targets)
+        sensors.append(columns[0].copy())
+
+    pose = task.figure.neutral.copy()
+    pose[task.figure.joints.index("swivel")] = 0.75 * math.pi
+    rollout(task.figure, HoldPose(pose), 1, 2.0, nthread=1, observer=observe)
+    terms = dict(zip(task.weights, meter.terms()[0], strict=True))
+    end = sensors[-1]
+    assert end[index["l_target"]] == pytest.approx(0.0, abs=0.03)
+    assert end[index["f_target"]] == pytest.approx(math.hypot(0.8, 0.8), abs=0.03)
+    assert terms["neutral"] == pytest.approx(0.0, abs=0.01)
+    assert terms["fallen"] == 0.0 and terms["head"] == 0.0
+
+
 def test_hop_targets_are_checked() -> None:
     with pytest.raises(FigureError, match=r"0\.3 to 2 m"):
         make_task("luxo3d-hop", target=(2.0, 1.0))

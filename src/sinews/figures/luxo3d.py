@@ -63,7 +63,7 @@ class LuxoShape3D:
     neck_axis: str = "fixed"
     swivel: bool = True
     swivel_range: float = 2.8
-    swivel_servo: Servo = Servo("swivel", kp=10.0, kv=0.5, torque=5.0)
+    swivel_servo: Servo = Servo("swivel", kp=2.0, kv=0.5, torque=1.0)
     servos: tuple[Servo, Servo, Servo] = (
         Servo("base_hinge", kp=30.0, kv=1.5, torque=20.0),
         Servo("elbow", kp=20.0, kv=0.8, torque=15.0),
