@@ -3,17 +3,22 @@
 "Our lamp model was a fully 3-dimensional articulated body with 4 links and 3
 internally controllable degrees of freedom." Bodies: ``base`` (a disc, with
 the free root joint, so it slides, turns and tips in any direction) →
-``arm_lower`` (hinge ``base_hinge``, pitch) → ``arm_upper`` (hinge ``elbow``,
-pitch) → ``head`` (hinge ``neck``).
+``arm_lower`` (hinges ``swivel``, about the base's vertical, and
+``base_hinge``, pitch) → ``arm_upper`` (hinge ``elbow``, pitch) → ``head``
+(fixed to the upper arm at its rest pitch).
 
 The paper does not say where its three axes point. With three parallel
 pitch axes (the planar lamp's) a lamp standing symmetric can never turn: no
-torque about the vertical ever arises. Here the two arm hinges pitch (they make
-the hop) and the **neck twists the shade about the upper arm's axis**, as a
-desk lamp's shade swivels: swinging the heavy head off the lamp's plane moves
-its centre of mass sideways and, through the tilted arm, gives a reaction
-about the vertical, so hops can veer and turn (measured in docs/figures3d.md).
-``LuxoShape3D.neck_axis`` switches the neck back to a pitch for comparison.
+torque about the vertical ever arises. Here the lamp **swivels its arm on the
+base**, as a desk lamp does: it aims the arm, then hops in the arm's plane as
+the planar lamp does, and its heading frame (what ``root_yaw``, ``root_vf``
+and a target's ``f_``/``l_`` columns refer to) follows the arm. The swivel's
+servo is gentle (a 3 rad step turns the arm in ~0.5 s without tipping the
+lamp), and the friction of the disc on the floor keeps the base from turning
+back by more than a few degrees. Other choices, for comparison
+(docs/figures3d.md): ``LuxoShape3D(swivel=False, neck_axis="twist")``, which
+steers by twisting the heavy shade about the upper arm (hops veer, but the
+shade tips the lamp), and ``neck_axis="pitch"``, the planar lamp's neck.
 
 At rest every hinge is at 0, the lower arm leans back, the upper arm forward,
 the head points down and forward (the planar lamp's pose), and the heading
@@ -32,6 +37,11 @@ from sinews.figures.mjcf3d import FREE_ROOT, document3d, hinge3d
 __all__ = ["LuxoShape3D", "luxo3d", "luxo3d_mjcf"]
 
 
+SWIVEL_SERVO = Servo("swivel", kp=2.0, kv=0.5, torque=1.0)
+"""The swivel's servo: critically damped on the arm's ~0.03 kg·m² about the vertical, and
+weak enough that a 3 rad step turns the arm in ~0.5 s without tipping the lamp."""
+
+
 @dataclass(frozen=True)
 class LuxoShape3D:
     """Dimensions (m), masses (kg), rest pose (rad), ranges and servos of the 3D lamp.
@@ -47,8 +57,13 @@ class LuxoShape3D:
         rest_angles: pitch of the lower arm from vertical, then the elbow's and
             the neck's relative pitch, in the rest pose (positive leans forward).
         joint_range: half-width of each hinge's range about its rest angle.
-        neck_axis: ``"twist"`` (about the upper arm, the default) or ``"pitch"``.
-        servos: base hinge, elbow, neck.
+        neck_axis: the neck's hinge: ``"fixed"`` (none, the default), ``"twist"``
+            (about the upper arm) or ``"pitch"``.
+        swivel: whether the lower arm turns on the base (hinge ``swivel``, the
+            first servo, and the heading joint).
+        swivel_range: half-width of the swivel's range, rad.
+        swivel_servo: its servo.
+        servos: base hinge, elbow, neck (the neck's unused when it is fixed).
     """
 
     base_radius: float = 0.1
@@ -63,7 +78,7 @@ class LuxoShape3D:
     neck_axis: str = "fixed"
     swivel: bool = True
     swivel_range: float = 2.8
-    swivel_servo: Servo = Servo("swivel", kp=2.0, kv=0.5, torque=1.0)
+    swivel_servo: Servo = SWIVEL_SERVO
     servos: tuple[Servo, Servo, Servo] = (
         Servo("base_hinge", kp=30.0, kv=1.5, torque=20.0),
         Servo("elbow", kp=20.0, kv=0.8, torque=15.0),
@@ -102,7 +117,7 @@ def luxo3d_mjcf(shape: LuxoShape3D = LuxoShape3D(), *, friction: float = 1.0) ->
             <geom name="head" {head} mass="{fmt(m_head)}" material="accent"/>
           </body>"""
     else:
-        raise ValueError(f"neck_axis is 'twist' or 'pitch', not {shape.neck_axis!r}")
+        raise ValueError(f"neck_axis is 'fixed', 'twist' or 'pitch', not {shape.neck_axis!r}")
     swivel = ""
     if shape.swivel:
         # the first of the lower arm's two joints turns it about the base's vertical (the body

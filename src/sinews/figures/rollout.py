@@ -149,8 +149,9 @@ def rollout(
     sim = Population(model, n_individuals, threads, max_speed)
     if figure.sites:  # site positions are read at t = 0 too (contact forces are 0 until a step)
         sim.batch.forward(stage=require_mujoco().mjtStage.mjSTAGE_POS)
-    reader = make_reader(model, figure.joints, figure.contact_bodies, figure.sites, figure.root,
-                         figure.heading_joint)
+    reader = make_reader(
+        model, figure.joints, figure.contact_bodies, figure.sites, figure.root, figure.heading_joint
+    )
     sensors = np.empty((n_individuals, reader.n_columns))
     initial_x = sim.qpos[:, 0].copy()
     total = n_ticks * substeps
