@@ -95,8 +95,6 @@ def test_free_root_sensors_read_position_heading_and_the_heading_frame(lamp: Fig
     assert column["l_base_front"] == pytest.approx(0.0, abs=1e-9)
     assert column["x_base_front"] == pytest.approx(1.0, abs=1e-9)
     assert column["y_base_front"] == pytest.approx(2.0 + front)
-    assert column["a_base_front"] == pytest.approx(0.0, abs=1e-9)  # dead ahead
-    assert column["d_base_front"] == pytest.approx(front)
 
 
 def test_a_tipped_base_reads_its_tilt_and_lean(lamp: Figure) -> None:

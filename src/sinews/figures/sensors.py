@@ -26,10 +26,8 @@ z and then its position relative to the root in the root's **heading frame**
 (``f_``: forward, ``l_``: left, ``u_``: up; the heading is the root body's x
 axis projected on the floor, turned by the angle of a *heading joint* if the
 figure has one (a lamp's swivel), so the frame turns with the figure but does
-not tip with it), then per site the same on the floor in polar form: ``a_``,
-its bearing from the heading (rad, left positive, ±π) and ``d_``, its
-horizontal distance (m). A goal that is a site in the world (a target) then
-reads as the paper's "position relative to the goal", in the body's frame. See
+not tip with it). A goal that is a site in the world (a target) then reads as the
+paper's "position relative to the goal", in the body's frame. See
 `FreeSensorReader`.
 """
 
@@ -103,7 +101,6 @@ def sensor_columns(
             *(f"f{axis}_{body}" for body in contact_bodies for axis in "xyz"),
             *(f"{axis}_{site}" for site in sites for axis in "xyz"),
             *(f"{axis}_{site}" for site in sites for axis in "flu"),
-            *(f"{polar}_{site}" for site in sites for polar in "ad"),
         )
     return (
         "time",
@@ -208,8 +205,7 @@ class FreeSensorReader:
         self._force = self._dq + n_act
         self._site = self._force + len(self._force_index)
         self._heading = self._site + len(self._site_index)
-        self._polar = self._heading + len(self._site_index)
-        self.n_columns = self._polar + 2 * len(adr)
+        self.n_columns = self._heading + len(self._site_index)
 
     def read(
         self,
@@ -268,15 +264,10 @@ class FreeSensorReader:
             out[:, self._site : self._heading] = world
             dx = world[:, 0::3] - qpos[:, 0:1]
             dy = world[:, 1::3] - qpos[:, 1:2]
-            heading = out[:, self._heading : self._polar]
-            forward = heading[:, 0::3]
-            left = heading[:, 1::3]
-            forward[:] = c[:, None] * dx + s[:, None] * dy
-            left[:] = c[:, None] * dy - s[:, None] * dx
+            heading = out[:, self._heading :]
+            heading[:, 0::3] = c[:, None] * dx + s[:, None] * dy
+            heading[:, 1::3] = c[:, None] * dy - s[:, None] * dx
             heading[:, 2::3] = world[:, 2::3] - qpos[:, 2:3]
-            polar = out[:, self._polar :]
-            polar[:, 0::2] = np.arctan2(left, forward)
-            polar[:, 1::2] = np.hypot(left, forward)
 
 
 def make_reader(

@@ -10,8 +10,7 @@ and the terminals.
 "Terminals as in the paper": the lamp sees its joint angles, its height,
 velocity (forward, sideways, up, in its heading frame), how its base leans,
 the floor's force on the base, time, and the target in its heading frame
-(``f_target`` ahead, ``l_target`` to the left; in polar form ``a_target``,
-its bearing, and ``d_target``, its distance) — "its position relative to
+(``f_target`` ahead, ``l_target`` to the left) — "its position relative to
 the goal point, its velocity, and the amount of force being imparted to its
 base". The humanoid sees the driven joints' angles, both feet's floor forces,
 its hand's position relative to the pelvis in the heading frame, time, and
@@ -62,7 +61,7 @@ LUXO3D_BODY = (
     "fz_base",
 )
 """What the 3D lamp senses of itself."""
-LUXO3D_SENSORS = (*LUXO3D_BODY, "f_target", "l_target", "a_target", "d_target")
+LUXO3D_SENSORS = (*LUXO3D_BODY, "f_target", "l_target")
 """The 3D lamp's terminals (besides the constants): itself and the target."""
 
 ARM_R = ("shoulder_x_r", "shoulder_y_r", "shoulder_z_r", "elbow_r")
