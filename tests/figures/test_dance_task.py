@@ -47,7 +47,7 @@ def test_the_dance_hears_the_music_after_the_sensors(name: str) -> None:
     ("name", "joints", "spot", "weights"),
     [
         ("luxo-dance", ("base_hinge", "elbow", "neck"), ("root_x",), DANCE_STYLE),
-        ("luxo3d-dance", ("swivel", "base_hinge", "elbow"), ("root_x", "root_y"), DANCE_STYLE),
+        ("luxo3d-dance", ("base_hinge", "elbow", "neck"), ("root_x", "root_y"), DANCE_STYLE),
         ("humanoid-dance", ("neck", "shoulder_l", "elbow_l", "shoulder_r", "elbow_r"),
          ("root_x",), DANCE_STYLE),
         ("humanoid3d-dance", ("shoulder_x_l", "shoulder_y_l", "shoulder_z_l", "elbow_l",

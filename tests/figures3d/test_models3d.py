@@ -31,7 +31,7 @@ def person() -> Figure:
 def test_the_lamp_has_four_links_three_hinges_and_a_free_base(lamp: Figure) -> None:
     model = lamp.model()
     assert lamp.root == "free"
-    assert lamp.joints == ("swivel", "base_hinge", "elbow") and lamp.heading_joint == "swivel"
+    assert lamp.joints == ("base_hinge", "elbow", "neck") and lamp.heading_joint is None
     assert model.nbody - 1 == 4  # base, two arms, head
     assert model.nv == 6 + 3 and model.nu == 3
     assert model.jnt_type[0] == 0  # mjJNT_FREE
@@ -123,7 +123,8 @@ def test_a_free_root_is_checked() -> None:
 
 
 def test_a_lamp_of_three_pitch_hinges_cannot_turn_but_a_swivel_or_twist_can() -> None:
-    """Why the lamp swivels: with three parallel pitch axes nothing turns it."""
+    """Why the neck twists (or the arm swivels): with three parallel pitch axes nothing
+    turns the lamp."""
     rng = np.random.default_rng(0)
     n = 16
     amps, phases = rng.uniform(-1.2, 1.2, (n, 3)), rng.uniform(0, 2 * np.pi, (n, 3))
@@ -145,20 +146,29 @@ def test_a_lamp_of_three_pitch_hinges_cannot_turn_but_a_swivel_or_twist_can() ->
         return (np.abs(y) + (1 - r11)).max(axis=0)
 
     assert out_of_plane(luxo3d(LuxoShape3D(swivel=False, neck_axis="pitch"))).max() < 1e-6
-    assert (out_of_plane(luxo3d()) > 0.1).sum() >= n // 2
-    assert (
-        out_of_plane(luxo3d(LuxoShape3D(swivel=False, neck_axis="twist"))) > 0.1
-    ).sum() >= n // 2
+    assert (out_of_plane(luxo3d()) > 0.1).sum() >= n // 2  # the neck twists
+    assert (out_of_plane(swivel_lamp()) > 0.1).sum() >= n // 2
 
 
-def test_the_heading_follows_the_swivel(lamp: Figure) -> None:
+def swivel_lamp() -> Figure:
+    return luxo3d(LuxoShape3D(swivel=True, neck_axis="fixed"))
+
+
+def test_the_swivel_lamp_has_four_links_and_three_hinges_the_first_its_heading() -> None:
+    lamp = swivel_lamp()
+    model = lamp.model()
+    assert lamp.joints == ("swivel", "base_hinge", "elbow") and lamp.heading_joint == "swivel"
+    assert model.nbody - 1 == 4 and model.nv == 6 + 3 and model.nu == 3
+
+
+def test_the_heading_follows_the_swivel() -> None:
     """Swivel the arm by 0.5 rad on a base facing +x: the lamp heads 0.5 rad left, and a
     point ahead on the lower arm's x axis lies dead ahead in its frame."""
     import mujoco
 
     from sinews.figures.sensors import make_reader
 
-    xml = lamp.xml.replace(
+    xml = swivel_lamp().xml.replace(
         '<geom name="arm_lower"', '<site name="tip" pos="0.2 0 0"/><geom name="arm_lower"'
     )
     figure = Figure.from_mjcf(xml, name="lamp", base_bodies=("base",), sites=("tip",),

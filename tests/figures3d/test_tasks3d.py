@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
+import xml.etree.ElementTree as ET
 from typing import Any
 
 import numpy as np
@@ -17,8 +19,9 @@ from sinews.experiments.gp.settings import GPSettings, Runtime
 from sinews.experiments.gp.simulate import measure_programs
 from sinews.figures import rollout
 from sinews.figures.figure import FigureError
+from sinews.figures.luxo3d import LuxoShape3D, luxo3d
 from sinews.figures.tasks import Task, TaskMeter, make_task
-from sinews.figures.tasks3d import TASKS_3D
+from sinews.figures.tasks3d import LUXO3D_SENSORS, TASKS_3D
 
 
 def _held(
@@ -70,11 +73,25 @@ def test_the_lamp_sees_the_goal_in_its_heading_frame() -> None:
     assert terms["fallen"] == 0.0 and terms["head"] == 0.0
 
 
+def _swivel_hop(target: tuple[float, float]) -> Task:
+    """The hop task with the swivel lamp in place of the twisting one."""
+    swivel = luxo3d(LuxoShape3D(swivel=True, neck_axis="fixed"))
+    mjcf = ET.fromstring(swivel.xml)
+    world = mjcf.find("worldbody")
+    assert world is not None
+    ET.SubElement(world, "site", {"name": "target", "pos": f"{target[0]} {target[1]} 0.001"})
+    joints = ("swivel", "base_hinge", "elbow")
+    senses = tuple("q_swivel" if name == "q_neck" else name for name in LUXO3D_SENSORS)
+    task = make_task("luxo3d-hop", target=target)
+    return dataclasses.replace(task, figure=swivel.edited(mjcf, sites=("target",)),
+                               joints=joints, sensors=senses)  # fmt: skip
+
+
 def test_a_lamp_swivelled_towards_the_x_sees_it_so_and_loses_no_neutral_bonus() -> None:
-    """Hold the swivel at the X's bearing (135° left): the arm turns that way on a base that
-    slips back a little, the X reads at its bearing from the arm's heading, and ending turned
-    is no departure from the neutral pose (only the arms' pose counts)."""
-    task = make_task("luxo3d-hop", target=(-0.8, 0.8))
+    """Hold the swivel lamp's swivel at the X's bearing (135° left): the arm turns that way on
+    a base that slips back a little, the X reads at its bearing from the arm's heading, and
+    ending turned is no departure from the neutral pose (only the arms' pose counts)."""
+    task = _swivel_hop((-0.8, 0.8))
     column = {name: k for k, name in enumerate(task.figure.sensor_names)}
     meter = TaskMeter(task, 1)
     last: list[np.ndarray] = []

@@ -3,22 +3,24 @@
 "Our lamp model was a fully 3-dimensional articulated body with 4 links and 3
 internally controllable degrees of freedom." Bodies: ``base`` (a disc, with
 the free root joint, so it slides, turns and tips in any direction) →
-``arm_lower`` (hinges ``swivel``, about the base's vertical, and
-``base_hinge``, pitch) → ``arm_upper`` (hinge ``elbow``, pitch) → ``head``
-(fixed to the upper arm at its rest pitch).
+``arm_lower`` (hinge ``base_hinge``, pitch) → ``arm_upper`` (hinge ``elbow``,
+pitch) → ``head`` (hinge ``neck``).
 
 The paper does not say where its three axes point. With three parallel
 pitch axes (the planar lamp's) a lamp standing symmetric can never turn: no
-torque about the vertical ever arises. Here the lamp **swivels its arm on the
-base**, as a desk lamp does: it aims the arm, then hops in the arm's plane as
-the planar lamp does, and its heading frame (what ``root_yaw``, ``root_vf``
-and a target's ``f_``/``l_`` columns refer to) follows the arm. The swivel's
-servo is gentle (a 3 rad step turns the arm in ~0.5 s without tipping the
-lamp), and the friction of the disc on the floor keeps the base from turning
-back by more than a few degrees. Other choices, for comparison
-(docs/figures3d.md): ``LuxoShape3D(swivel=False, neck_axis="twist")``, which
-steers by twisting the heavy shade about the upper arm (hops veer, but the
-shade tips the lamp), and ``neck_axis="pitch"``, the planar lamp's neck.
+torque about the vertical ever arises. Here the two arm hinges pitch (they make
+the hop) and the **neck twists the shade about the upper arm's axis**, as a
+desk lamp's shade swivels: swinging the heavy head off the lamp's plane moves
+its centre of mass sideways and, through the tilted arm, gives a reaction
+about the vertical, so hops can veer and turn (measured in docs/figures3d.md).
+
+Two other lamps, for comparison: ``neck_axis="pitch"``, the planar lamp's
+neck, and the **swivel lamp** ``LuxoShape3D(swivel=True, neck_axis="fixed")``:
+the lower arm turns on the base about the vertical (hinge ``swivel``, a
+gentle servo: a 3 rad step turns the arm in ~0.5 s without tipping the lamp),
+the shade is fixed, and the heading frame follows the arm (the figure's
+``heading_joint``). It did not hop to the X more often than the twisting lamp
+(docs/figures3d.md, session 11), so it is not the default.
 
 At rest every hinge is at 0, the lower arm leans back, the upper arm forward,
 the head points down and forward (the planar lamp's pose), and the heading
@@ -57,8 +59,8 @@ class LuxoShape3D:
         rest_angles: pitch of the lower arm from vertical, then the elbow's and
             the neck's relative pitch, in the rest pose (positive leans forward).
         joint_range: half-width of each hinge's range about its rest angle.
-        neck_axis: the neck's hinge: ``"fixed"`` (none, the default), ``"twist"``
-            (about the upper arm) or ``"pitch"``.
+        neck_axis: the neck's hinge: ``"twist"`` (about the upper arm, the
+            default), ``"pitch"`` or ``"fixed"`` (none).
         swivel: whether the lower arm turns on the base (hinge ``swivel``, the
             first servo, and the heading joint).
         swivel_range: half-width of the swivel's range, rad.
@@ -75,8 +77,8 @@ class LuxoShape3D:
     masses: tuple[float, float, float, float] = (0.6, 0.15, 0.15, 0.25)
     rest_angles: tuple[float, float, float] = (-0.4, 1.2, 1.4)
     joint_range: tuple[float, float, float] = (1.2, 1.5, 1.2)
-    neck_axis: str = "fixed"
-    swivel: bool = True
+    neck_axis: str = "twist"
+    swivel: bool = False
     swivel_range: float = 2.8
     swivel_servo: Servo = SWIVEL_SERVO
     servos: tuple[Servo, Servo, Servo] = (

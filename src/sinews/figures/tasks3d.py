@@ -47,7 +47,7 @@ __all__ = [
     "luxo3d_limbo",
 ]
 
-LUXO3D_JOINTS = ("swivel", "base_hinge", "elbow")
+LUXO3D_JOINTS = ("base_hinge", "elbow", "neck")
 """The 3D lamp's three servoed hinges (`sinews.figures.luxo3d`)."""
 LUXO3D_BODY = (
     "time",
