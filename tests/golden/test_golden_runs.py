@@ -31,6 +31,10 @@ CASES: dict[str, list[str]] = {
                         "1", "--seed", "3"],
     "gp-luxo": ["luxo", "--controller", "gp", "--task", "hop", "--population", "8",
                 "--generations", "2", "--seconds", "0.5", "--seed", "3"],
+    "gp-luxo3d": ["luxo3d", "--controller", "gp", "--task", "hop", "--target", "1.0,0.5",
+                  "--population", "8", "--generations", "2", "--seconds", "0.5", "--seed", "3"],
+    "gp-humanoid3d": ["humanoid3d", "--controller", "gp", "--task", "touch", "--population",
+                      "6", "--generations", "2", "--seconds", "0.3", "--seed", "3"],
 }  # fmt: skip
 
 
