@@ -137,6 +137,10 @@ def test_a_dance_renders_with_its_song(folder: Path, dance: tuple[str, str, Path
     assert np.abs(sound).max() > 0.1  # the song, not silence
 
 
+NET_DANCE = ["luxo", "--controller", "springnet", "--task", "dance", "--song", "song.wav"]
+"""A spring-net dance of the lamp to a song (the bad options follow)."""
+
+
 @pytest.mark.parametrize(
     ("command", "message"),
     [
@@ -150,36 +154,10 @@ def test_a_dance_renders_with_its_song(folder: Path, dance: tuple[str, str, Path
             ["luxo3d", "--controller", "springnet", "--task", "dance", "--song", "song.wav"],
             "spring nets dance only the luxo, snake, humanoid",
         ),
-        (
-            [
-                "luxo",
-                "--controller",
-                "springnet",
-                "--task",
-                "dance",
-                "--song",
-                "song.wav",
-                "--tempi",
-                "0.3",
-            ],
-            "tempi must be between 0.5 and 2",
-        ),
+        ([*NET_DANCE, "--tempi", "0.3"], "tempi must be between 0.5 and 2"),
         (["luxo", "--controller", "springnet", "--tempi", "0.8"], "tempi are for a dance"),
         (["luxo", "--controller", "springnet", "--drive", "90"], "a drive is for a dance"),
-        (
-            [
-                "luxo",
-                "--controller",
-                "springnet",
-                "--task",
-                "dance",
-                "--song",
-                "song.wav",
-                "--drive",
-                "1e9",
-            ],
-            "drive must be at most 1000",
-        ),
+        ([*NET_DANCE, "--drive", "1e9"], "drive must be at most 1000"),
     ],
 )
 def test_bad_dances_are_one_line(folder: Path, command: list[str], message: str) -> None:
