@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -10,8 +11,11 @@ import pytest
 
 from dance_helpers import click_song
 from sinews.control.music_input import (
+    BEAT_CLOCK_S,
     MUSIC_TERMINALS,
+    BeatClock,
     MusicInput,
+    beat_clock,
     beat_phase_at,
     music_table,
 )
@@ -60,16 +64,19 @@ def test_the_table_is_the_same_every_time(music: MusicFeatures, tmp_path: Path) 
 
 
 class Echo:
-    """A controller that answers its input rows (to see what it was given)."""
+    """A controller that answers its input rows (to see what it was given, and when)."""
 
     def __init__(self) -> None:
         self.seen: list[npt.NDArray[np.float64]] = []
+        self.times: list[float] = []
 
     def reset(self, n_individuals: int) -> None:
         self.seen.clear()
+        self.times.clear()
 
     def control(self, t: float, sensors: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
         self.seen.append(sensors.copy())
+        self.times.append(t)
         return sensors
 
 
@@ -84,3 +91,26 @@ def test_music_input_appends_the_tick_row_to_every_individual(music: MusicFeatur
         assert rows.shape == (2, 3 + len(MUSIC_TERMINALS))
         assert np.array_equal(rows[:, :3], sensors)
         assert np.array_equal(rows[:, 3:], np.tile(table[min(tick, 10)], (2, 1)))
+
+
+def test_the_beat_clock_counts_beats_in_half_seconds_from_tick_0(music: MusicFeatures) -> None:
+    steady = replace(music, beats=np.arange(0.3, 5.0, 0.4))  # 150 BPM from 0.3 s
+    clock = beat_clock(steady, 100, 300)
+    assert clock.shape == (301,) and clock[0] == 0.0
+    np.testing.assert_allclose(clock, BEAT_CLOCK_S * np.arange(301) / 100 / 0.4, atol=1e-12)
+    changing = replace(music, beats=np.array([0.0, 0.5, 0.9, 1.2]))  # beats ever closer
+    clock = beat_clock(changing, 100, 120)
+    np.testing.assert_allclose(clock[[0, 50, 90, 120]], BEAT_CLOCK_S * np.arange(4), atol=1e-12)
+    np.testing.assert_allclose(np.diff(clock[50:91]), BEAT_CLOCK_S / 40, atol=1e-12)
+    silent = replace(music, beats=np.array([1.0]))  # no tempo: the seconds themselves
+    assert np.array_equal(beat_clock(silent, 100, 300), np.arange(301) / 100)
+
+
+def test_a_controller_on_the_beat_clock_is_asked_for_the_clocks_time() -> None:
+    clock = np.array([0.0, 0.1, 0.3, 0.6])
+    inner = Echo()
+    timed = BeatClock(inner, clock, 100)
+    timed.reset(1)
+    for tick in (0, 1, 2, 3, 5):  # past the end: the last time
+        timed.control(tick / 100, np.zeros((1, 2)))
+    assert inner.times == [0.0, 0.1, 0.3, 0.6, 0.6]

@@ -158,6 +158,8 @@ NET_DANCE = ["luxo", "--controller", "springnet", "--task", "dance", "--song", "
         (["luxo", "--controller", "springnet", "--tempi", "0.8"], "tempi are for a dance"),
         (["luxo", "--controller", "springnet", "--drive", "90"], "a drive is for a dance"),
         ([*NET_DANCE, "--drive", "1e9"], "drive must be at most 1000"),
+        ([*NET_DANCE, "--clock", "sometimes"], "clock must be one of time, beats"),
+        (["luxo", "--controller", "springnet", "--clock", "beats"], "a beat clock is for a dance"),
     ],
 )
 def test_bad_dances_are_one_line(folder: Path, command: list[str], message: str) -> None:

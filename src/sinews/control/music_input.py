@@ -17,6 +17,10 @@ follow the figure's sensor columns (`MusicInput` appends them every tick):
 A song without beats (silence) has phase 0 throughout. The values at tick k are those
 of the analysis frame nearest to ``k / control_hz``, so they depend on the song and
 the rate alone.
+
+`BeatClock` runs a controller on the song's beats instead of its seconds: one beat
+is `BEAT_CLOCK_S` of the controller's time whatever the tempo, so anything periodic
+in the controller (a spring net's own swing) keeps its ratio to the beat on every song.
 """
 
 from __future__ import annotations
@@ -32,9 +36,12 @@ from sinews.music.features import MusicFeatures
 __all__ = [
     "BAND_GROUPS_HZ",
     "BEATS_PER_BAR",
+    "BEAT_CLOCK_S",
     "MUSIC_TERMINALS",
     "ONSET_SCALE_DB",
+    "BeatClock",
     "MusicInput",
+    "beat_clock",
     "beat_phase_at",
     "music_table",
 ]
@@ -49,6 +56,9 @@ BAND_GROUPS_HZ = ((0.0, 150.0), (150.0, 600.0), (600.0, 2500.0), (2500.0, np.inf
 """Band centres of ``bass``, ``low_mid``, ``high_mid`` and ``treble``, Hz."""
 ONSET_SCALE_DB = 4.0
 """The mean onset (dB of rise per frame) that reads as 1."""
+BEAT_CLOCK_S = 0.5
+"""One beat on the beat clock, in the controller's seconds: a controller's constants
+mean on every song what they mean at 120 BPM in seconds."""
 
 
 def beat_phase_at(beats: npt.ArrayLike, times: npt.ArrayLike) -> tuple[FloatArray, FloatArray]:
@@ -126,3 +136,44 @@ class MusicInput:
         rows[:, : sensors.shape[1]] = sensors
         rows[:, sensors.shape[1] :] = self.table[tick]
         return self.inner.control(t, rows)
+
+
+def beat_clock(
+    music: MusicFeatures, control_hz: float, n_ticks: int, beat_s: float = BEAT_CLOCK_S
+) -> FloatArray:
+    """(n_ticks + 1,) the beat clock at ticks 0 … n_ticks: ``beat_s`` × the beats since
+    tick 0 (fractional, from `beat_phase_at`), rising as fast as the song's tempo.
+
+    A song with fewer than two beats has no tempo: its clock is the seconds themselves.
+    """
+    times = np.arange(n_ticks + 1) / control_hz
+    if len(music.beats) < 2:
+        return times
+    index, phase = beat_phase_at(music.beats, times)
+    beat = index + phase
+    return beat_s * (beat - beat[0])
+
+
+@dataclass(eq=False)
+class BeatClock:
+    """A controller that runs on the beat clock (the `Controller` protocol): at tick k it
+    is asked for time ``clock[k]`` instead of ``k / control_hz``.
+
+    Attributes:
+        inner: the controller whose time is the beats.
+        clock: (n_ticks + 1,) its time per control tick, non-decreasing (`beat_clock`).
+        control_hz: ticks per second.
+    """
+
+    inner: Controller
+    clock: FloatArray
+    control_hz: float
+
+    def reset(self, n_individuals: int) -> None:
+        """Reset the wrapped controller."""
+        self.inner.reset(n_individuals)
+
+    def control(self, t: float, sensors: FloatArray) -> FloatArray:
+        """The wrapped controller's targets at the beat-clock time of tick ``t``."""
+        tick = min(round(t * self.control_hz), len(self.clock) - 1)
+        return self.inner.control(float(self.clock[tick]), sensors)

@@ -86,6 +86,25 @@ def test_a_driven_net_swings_at_the_beat_and_a_free_one_at_its_own_period(
     assert abs(free / period - 1) > 0.5
 
 
+@pytest.mark.parametrize("clock", ["time", "beats"])
+def test_on_the_beat_clock_a_free_net_swings_at_a_fixed_multiple_of_the_beat(
+    song: Path, clock: str
+) -> None:
+    settings = _dance_settings(song, 3.0, masses=3, tempi=[1.25], clock=clock)
+    size, n = settings.encoding.size, settings.masses
+    genes = np.full((1, settings.genome_size), 0.5)  # no drive
+    genes[:, :n] = 0.1  # masses of 1.09
+    genes[:, n : size - n] = 0.5  # springs of 50: a swing of about 0.5 s
+    genes[:, size - n : size] = [0.2, 0.8, 0.5]  # masses apart: the net swings by itself
+    periods = []
+    for rate in settings.tempi:
+        _, net = simulate(settings, genes, record_hz=100.0, rate=rate)
+        assert net is not None
+        periods.append(dominant_period(net[:, 0, 0], 100.0, skip=0.0))
+    ratio = periods[0] / periods[1]
+    assert ratio == pytest.approx(1.25 if clock == "beats" else 1.0, rel=0.03)
+
+
 def test_a_song_played_faster_is_the_same_music_sooner(song: Path) -> None:
     music = analyse_file(song)
     fast = music.played_at(1.25)
@@ -171,6 +190,17 @@ def test_only_a_dance_stores_its_tempi_and_drive(song: Path) -> None:
     assert SpringNetSettings.from_values(dance.to_dict()) == dance
     older = {k: v for k, v in dance.to_dict().items() if k != "drive"}  # stored before drive
     assert SpringNetSettings.from_values(older).drive == DRIVE_FORCE
+    assert "clock" not in plain.to_dict() and dance.clock == "time"
+    on_beats = _dance_settings(song, 3.0, clock="beats")
+    assert SpringNetSettings.from_values(on_beats.to_dict()).clock == "beats"
+    older = {k: v for k, v in on_beats.to_dict().items() if k != "clock"}  # before the clock
+    assert SpringNetSettings.from_values(older).clock == "time"
+
+
+@pytest.mark.parametrize("value", ["sometimes", "Beats", 1, True])
+def test_bad_clocks_are_refused(song: Path, value: object) -> None:
+    with pytest.raises(SinewsError, match="clock must be one of time, beats"):
+        _dance_settings(song, 3.0, clock=value)
 
 
 def test_a_harder_drive_pushes_the_masses_harder(song: Path) -> None:

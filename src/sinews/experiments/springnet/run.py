@@ -72,11 +72,12 @@ DEFAULTS: dict[str, Any] = {
     "song": None,
     "tempi": None,
     "drive": None,
+    "clock": None,
 }
 """The paper's largest run (20 generations of 2000 nets, 5 s trials) unless told otherwise."""
 _KIND_KEYS = (
     "figure", "seconds", "masses", "physics_hz", "control_hz", "keep", "task", "song", "tempi",
-    "drive",
+    "drive", "clock",
 )  # fmt: skip
 
 
@@ -99,6 +100,8 @@ class SpringNetKind:
                    "(e.g. 0.8,1.25; fitness is the mean), so no period of the net's own pays."),
         KindOption("drive", float, "Spring-net dance: the largest force the beat may push a "
                    f"mass with (default {DRIVE_FORCE:g})."),
+        KindOption("clock", str, "Spring-net dance: the net's time, 'time' (the song's seconds, "
+                   "the default) or 'beats' (a beat is half a second of the net's at any tempo)."),
     )  # fmt: skip
     defaults = DEFAULTS
     summary = "spring nets that move it as far as they can (|x_end - x_start|)"

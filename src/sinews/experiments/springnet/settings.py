@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from sinews.control.music_input import MusicInput, music_table
+from sinews.control.music_input import BeatClock, MusicInput, beat_clock, music_table
 from sinews.control.protocol import Controller
 from sinews.control.springnet import SpringNetController
 from sinews.errors import SinewsError
@@ -28,7 +28,9 @@ from sinews.figures.tasks import Task, make_task
 from sinews.limits import MAX_MASSES, check_whole
 from sinews.music.features import MusicFeatures
 
-__all__ = ["MAX_TEMPI", "NET_TIME_STEP", "PHYSICS_HZ", "TERMS", "SpringNetSettings", "tempi_of"]
+__all__ = [
+    "CLOCKS", "MAX_TEMPI", "NET_TIME_STEP", "PHYSICS_HZ", "TERMS", "SpringNetSettings", "tempi_of",
+]  # fmt: skip
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -41,6 +43,8 @@ MAX_TEMPI = 4
 """At most this many playback rates per dance (each one is a whole rollout)."""
 TERMS = {"distance": 1.0}
 """The fitness terms and their weights: the paper's distance only."""
+CLOCKS = ("time", "beats")
+"""A dancing net's time: the song's seconds, or its beats (`BeatClock`)."""
 
 
 @dataclass(frozen=True)
@@ -62,6 +66,9 @@ class SpringNetSettings:
             so a net that swings at one period of its own cannot score on all of them.
         drive: a dance's largest drive weight (force per unit of music): how hard the
             beat may push the masses against the springs.
+        clock: a dance's net time (`CLOCKS`): ``"time"``, the song's seconds, or
+            ``"beats"``, one beat = 0.5 s of the net's (`BeatClock`), so the net's own
+            swings keep their ratio to the beat at any tempo.
     """
 
     figure: str
@@ -74,6 +81,7 @@ class SpringNetSettings:
     song_hash: str | None = None
     tempi: tuple[float, ...] = (1.0,)
     drive: float = DRIVE_FORCE
+    clock: str = "time"
 
     @classmethod
     def from_values(cls, values: Mapping[str, Any]) -> SpringNetSettings:
@@ -102,6 +110,7 @@ class SpringNetSettings:
             song_hash=values.get("song_hash"),
             tempi=tempi_of(values.get("tempi")),
             drive=_drive(values.get("drive")),
+            clock=values.get("clock") or "time",
         )
         if settings.physics_hz % settings.control_hz:
             raise SinewsError("control_hz must divide physics_hz")
@@ -115,6 +124,10 @@ class SpringNetSettings:
             raise SinewsError("tempi are for a dance (--task dance)")
         if settings.task is None and settings.drive != DRIVE_FORCE:
             raise SinewsError("a drive is for a dance (--task dance)")
+        if settings.clock not in CLOCKS:
+            raise SinewsError(f"clock must be one of {', '.join(CLOCKS)}, got {settings.clock!r}")
+        if settings.task is None and settings.clock != "time":
+            raise SinewsError("a beat clock is for a dance (--task dance)")
         return settings
 
     def to_dict(self) -> dict[str, Any]:
@@ -128,7 +141,11 @@ class SpringNetSettings:
             "task": self.task,
             "song_path": self.song_path,
             "song_hash": self.song_hash,
-            **({} if self.task is None else {"tempi": list(self.tempi), "drive": self.drive}),
+            **(
+                {}
+                if self.task is None
+                else {"tempi": list(self.tempi), "drive": self.drive, "clock": self.clock}
+            ),
         }
 
     @cached_property
@@ -211,12 +228,16 @@ class SpringNetSettings:
         return music
 
     def with_music(self, controller: SpringNetController, rate: float = 1.0) -> Controller:
-        """The controller hearing the song played at ``rate`` (for a dance), else itself."""
+        """The controller hearing the song played at ``rate`` (for a dance; on the beat
+        clock if the run's is ``"beats"``), else itself."""
         if self.music is None:
             return controller
-        table = music_table(self.heard_at(rate), self.control_hz,
-                            round(self.seconds * self.control_hz))  # fmt: skip
-        return MusicInput(controller, table, self.control_hz)
+        heard, ticks = self.heard_at(rate), round(self.seconds * self.control_hz)
+        inner: Controller = controller
+        if self.clock == "beats":
+            inner = BeatClock(controller, beat_clock(heard, self.control_hz, ticks),
+                              self.control_hz)  # fmt: skip
+        return MusicInput(inner, music_table(heard, self.control_hz, ticks), self.control_hz)
 
 
 def tempi_of(value: object) -> tuple[float, ...]:
