@@ -1,10 +1,12 @@
-"""The figure page in Chromium, steering runs: a run started in the page survives its server
-being killed (a new server on the database, the page continues it, and it equals the CLI's
-uninterrupted run); a style weight set with its slider is stored in the run's history; the
-learning timeline plays the best of each generation in turn."""
+"""The figure page in Chromium, steering runs: a long run started in the page is followed while
+it runs (each new generation drawn, its best on the stage) and survives its server being killed
+(a new server on the database, the page continues it, and it equals the CLI's uninterrupted
+run); a style weight set with its slider is stored in the run's history; the learning timeline
+plays the best of each generation in turn."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -21,10 +23,32 @@ SEEK_END = """() => {
   slider.value = String(Math.round(0.6 * Number(slider.max)));
   slider.dispatchEvent(new Event("input"));
 }"""
-SNAKE = {"population": "5", "generations": "200", "seconds": "0.5", "seed": "7"}
+SNAKE = {"population": "5", "generations": "500", "seconds": "20", "seed": "7"}
+"""The longest snake run the form starts (its most generations, of its longest trials): minutes
+of evolving, so the page watches it run and its server is killed long before it ends."""
+LATEST = (
+    "figures.run.job && figures.run.job.running && figures.pack"
+    " && figures.shown === figures.run.generations - 1"
+)
+"""JS: the page shows the newest stored generation (as of its last poll) while the job runs."""
+WATCHED = """() => ({
+  shown: figures.shown,
+  title: document.getElementById("stage-title").textContent,
+  people: figures.pack.header.individuals.map((p) => ({ index: p.index, fitness: p.fitness })),
+})"""
 
 
-@pytest.mark.slow  # ~55 s at load 4: two studio starts and the CLI's twin run, each a process
+def watch_the_latest(page: Any, after: int) -> int:
+    """Wait until the page shows a generation past ``after``, the newest, while the run is
+    evolving; check its best is on the stage. The generation shown."""
+    page.wait_for_function(f"{LATEST} && figures.shown > {after}")
+    watched = page.evaluate(WATCHED)
+    best = max(watched["people"], key=lambda p: -math.inf if p["fitness"] is None else p["fitness"])
+    assert watched["title"] == f"Stage: generation {watched['shown']} #{best['index']}"
+    return int(watched["shown"])
+
+
+@pytest.mark.slow  # ~60 s at load 4: two studio starts and the CLI's twin run, each a process
 def test_a_page_run_survives_a_killed_server_and_ends_as_the_cli_run(
     page: Any, tmp_path: Path, studio_env: dict[str, str], shots: Path
 ) -> None:
@@ -45,14 +69,18 @@ def test_a_page_run_survives_a_killed_server_and_ends_as_the_cli_run(
         page.select_option("#form-controller", "springnet")
         page.select_option("#form-figure", "snake")
         page.click("#start-run")
-        page.wait_for_function("figures.run && figures.run.generations >= 3 && figures.pack")
+        expect(page.locator("#message")).to_contain_text(
+            f"started: evolving {SNAKE['generations']} generations"
+        )
+        first = watch_the_latest(page, 2)
+        watch_the_latest(page, first)  # the page follows the run: a newer generation, drawn
         run = page.evaluate("figures.run.id")
         page.goto("about:blank")  # a page polling a dead server logs refused connections
     finally:
         server.kill()  # SIGKILL mid-run: no pause, no clean-up
     with RunStore(db) as store:
         info = store.run(run)
-        assert info.status == "running" and 3 <= info.generations < 200
+        assert info.status == "running" and first < info.generations < int(SNAKE["generations"])
     server = StudioServer(db, studio_env)  # a new server on the same database
     try:
         page.goto(f"{server.url}figures?run={run}")
@@ -70,8 +98,10 @@ def test_a_page_run_survives_a_killed_server_and_ends_as_the_cli_run(
     finally:
         server.stop()
     twin = tmp_path / "twin.db"
-    sinews(twin, studio_env, "evolve", "snake", "--population", "5", "--generations",
-           str(target), "--seconds", "0.5", "--seed", "7")  # fmt: skip
+    options = {**SNAKE, "generations": str(target)}
+    sinews(
+        twin, studio_env, "evolve", "snake", *(a for k, v in options.items() for a in (f"--{k}", v))
+    )
     assert stored(db, run) == stored(twin, 1)
 
 
