@@ -11,6 +11,7 @@ them, which is only right when a change of physics or evolution is intended
 from __future__ import annotations
 
 import hashlib
+import importlib
 import json
 import os
 import subprocess
@@ -48,9 +49,23 @@ def _digest(*arrays: np.ndarray) -> str:
 
 
 def _private_env(tmp_path: Path) -> dict[str, str]:
-    """This environment with XDG data and cache folders under ``tmp_path``."""
+    """This environment with XDG data and cache folders under ``tmp_path``, and numpy's
+    SIMD loops held at the level the hashes were made at (`AVX512_LOOPS` off)."""
     return {**os.environ, "XDG_DATA_HOME": str(tmp_path / "data"),
-            "XDG_CACHE_HOME": str(tmp_path / "cache")}  # fmt: skip
+            "XDG_CACHE_HOME": str(tmp_path / "cache"),
+            "NPY_DISABLE_CPU_FEATURES": " ".join(_avx512_loops())}  # fmt: skip
+
+
+AVX512_LOOPS = ("X86_V4", "AVX512_ICL", "AVX512_SPR")
+"""numpy's AVX-512 loops: they round some functions (sin, exp, ...) differently in the last
+bit from its AVX2 loops (X86_V3), which made the hashes; on such a CPU the dancers and
+the 3D lamp evolve differently (measured on a Xeon with AVX-512, numpy 2.4)."""
+
+
+def _avx512_loops() -> list[str]:
+    """The `AVX512_LOOPS` this CPU has (numpy refuses to disable one it lacks)."""
+    found = importlib.import_module("numpy._core._multiarray_umath").__cpu_features__
+    return [name for name in AVX512_LOOPS if found.get(name)]
 
 
 def _exact(value: object) -> list[str]:

@@ -100,8 +100,8 @@ class SpringNetKind:
                    "(e.g. 0.8,1.25; fitness is the mean), so no period of the net's own pays."),
         KindOption("drive", float, "Spring-net dance: the largest force the beat may push a "
                    f"mass with (default {DRIVE_FORCE:g})."),
-        KindOption("clock", str, "Spring-net dance: the net's time, 'time' (the song's seconds, "
-                   "the default) or 'beats' (a beat is half a second of the net's at any tempo)."),
+        KindOption("clock", str, "Spring-net dance: the net's time, 'beats' (the default: a beat "
+                   "is half a second of the net's at any tempo) or 'time' (the song's seconds)."),
     )  # fmt: skip
     defaults = DEFAULTS
     summary = "spring nets that move it as far as they can (|x_end - x_start|)"
@@ -304,13 +304,14 @@ def dance_defaults(
 ) -> tuple[dict[str, Any], dict[str, float]]:
     """A dancing net run's defaults and term weights: the dance's terms phased in as in
     GP runs, 250 nets, the float GA that takes picks (``hybrid``: Alton's GA knows only the
-    net's genes; without picks the hybrid breeds exactly as the plain ``ga``)."""
+    net's genes; without picks the hybrid breeds exactly as the plain ``ga``), the net on
+    the beat clock (runs stored before it had none and keep the song's seconds)."""
     if figure not in DANCE_FIGURES:
         raise SinewsError(f"spring nets dance only the {', '.join(DANCE_FIGURES)}")
     weights = dict(make_task(DANCE_FIGURES[figure]).weights)
     generations = int(given.get("generations") or DEFAULTS["generations"])
     defaults = {**DEFAULTS, "population": 250, "strategy": "hybrid", "fitness": list(weights),
-                "phase_in": default_phase_in(generations)}  # fmt: skip
+                "phase_in": default_phase_in(generations), "clock": "beats"}  # fmt: skip
     return defaults, weights
 
 
