@@ -142,18 +142,16 @@ def beat_clock(
     music: MusicFeatures, control_hz: float, n_ticks: int, beat_s: float = BEAT_CLOCK_S
 ) -> FloatArray:
     """(n_ticks + 1,) the beat clock at ticks 0 … n_ticks: ``beat_s`` × the beats since
-    the last beat at or before tick 0 (fractional, from `beat_phase_at`), rising as fast
-    as the song's tempo.
+    tick 0 (fractional, from `beat_phase_at`), rising as fast as the song's tempo.
 
-    Counting from a beat, not from tick 0, puts a controller started at clock 0 in the
-    same state at the same place in the beat on every song, wherever its first beat falls.
     A song with fewer than two beats has no tempo: its clock is the seconds themselves.
     """
     times = np.arange(n_ticks + 1) / control_hz
     if len(music.beats) < 2:
         return times
     index, phase = beat_phase_at(music.beats, times)
-    return beat_s * (index - index[0] + phase)
+    beat = index + phase
+    return beat_s * (beat - beat[0])
 
 
 @dataclass(eq=False)
