@@ -96,8 +96,9 @@ def test_every_dance_is_stored_with_its_song_and_rated_by_the_beat(
     if controller == "gp":
         assert info.config["task"] == task.name
         assert {"sin", "cos"} <= set(info.config["functions"])
-    else:  # the float GA that takes picks (without them it is the plain GA)
+    else:  # the float GA that takes picks (without them it is the plain GA), on the beat clock
         assert info.config["task"] == "dance" and info.config["strategy"]["name"] == "hybrid"
+        assert info.config["clock"] == "beats"
         size = SpringNetSettings.from_values(info.config).genome_size
         assert {len(ind.genome) for ind in individuals} == {size}
 
