@@ -87,7 +87,7 @@ def beat_phase_at(beats: npt.ArrayLike, times: npt.ArrayLike) -> tuple[FloatArra
 
 def music_table(music: MusicFeatures, control_hz: float, n_ticks: int) -> FloatArray:
     """(n_ticks + 1, M) the `MUSIC_TERMINALS` at ticks 0 … n_ticks of ``control_hz``."""
-    times = np.arange(n_ticks + 1) / control_hz
+    times = _tick_times(control_hz, n_ticks)
     index, phase = beat_phase_at(music.beats, times)
     bar = (np.mod(index, BEATS_PER_BAR) + phase) / BEATS_PER_BAR
     frame = np.minimum(np.round(times * music.fps).astype(np.intp), music.n_frames - 1)
@@ -131,7 +131,7 @@ class MusicInput:
 
     def control(self, t: float, sensors: FloatArray) -> FloatArray:
         """The wrapped controller's targets for the sensors and tick ``t``'s music."""
-        tick = min(round(t * self.control_hz), len(self.table) - 1)
+        tick = _tick(t, self.control_hz, len(self.table))
         rows = np.empty((len(sensors), sensors.shape[1] + self.table.shape[1]))
         rows[:, : sensors.shape[1]] = sensors
         rows[:, sensors.shape[1] :] = self.table[tick]
@@ -146,7 +146,7 @@ def beat_clock(
 
     A song with fewer than two beats has no tempo: its clock is the seconds themselves.
     """
-    times = np.arange(n_ticks + 1) / control_hz
+    times = _tick_times(control_hz, n_ticks)
     if len(music.beats) < 2:
         return times
     index, phase = beat_phase_at(music.beats, times)
@@ -175,5 +175,16 @@ class BeatClock:
 
     def control(self, t: float, sensors: FloatArray) -> FloatArray:
         """The wrapped controller's targets at the beat-clock time of tick ``t``."""
-        tick = min(round(t * self.control_hz), len(self.clock) - 1)
+        tick = _tick(t, self.control_hz, len(self.clock))
         return self.inner.control(float(self.clock[tick]), sensors)
+
+
+def _tick_times(control_hz: float, n_ticks: int) -> FloatArray:
+    """(n_ticks + 1,) the times of ticks 0 … n_ticks, s."""
+    return np.arange(n_ticks + 1) / control_hz
+
+
+def _tick(t: float, control_hz: float, n_rows: int) -> int:
+    """The row of a per-tick table (``n_rows`` ticks from 0) for time ``t``; past the end,
+    the last."""
+    return min(round(t * control_hz), n_rows - 1)
