@@ -8,6 +8,11 @@ individual whose simulation failed (blew up, or any term is NaN) gets
 The phase-in follows Gritz & Hahn (seed 003): the first generations are
 rated by the main goal only, then the style weights rise linearly until they
 reach full weight — "teach it how to get to the X first", then add style.
+
+Some style terms may be *constraints* (e.g. the head never on the floor): from
+the phase-in's start on, Deb's feasibility rule (2000) ranks every individual
+that loses nothing on them above every one that does, and those that do by
+how much they lose, so a few centimetres of the goal can never buy a fall.
 """
 
 from __future__ import annotations
@@ -68,15 +73,25 @@ class FitnessSpec:
         weights: term name → full weight, the main goal first; style terms
             are every other entry.
         phase_in: how the style weights rise over generations.
+        constraints: style terms (penalties, at most 0) that must be 0: from
+            ``phase_in.start`` on, an individual below 0 on any of them ranks
+            below every individual that is not (see `combine`).
     """
 
     main: str
     weights: Mapping[str, float]
     phase_in: PhaseIn = field(default_factory=PhaseIn)
+    constraints: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if self.main not in self.weights:
             raise FitnessError(f"the main goal {self.main!r} needs a weight")
+        object.__setattr__(self, "constraints", tuple(self.constraints))
+        for name in self.constraints:
+            if name not in self.weights or name == self.main:
+                raise FitnessError(f"constraint {name!r} must be one of the style terms")
+        if len(set(self.constraints)) != len(self.constraints):
+            raise FitnessError("constraints name a term twice")
         for name, weight in self.weights.items():
             if not math.isfinite(weight):
                 raise FitnessError(f"weight of {name!r} must be a finite number, got {weight}")
@@ -106,20 +121,36 @@ class FitnessSpec:
 
         Returns:
             (P,) weighted sums; `WORST_FITNESS` where failed or any term is NaN.
+            With constraints, from ``phase_in.start`` on: the sums of those
+            that lose nothing on them; below the least of these, each other
+            one's total loss on them (Deb's rule: a tournament then prefers
+            the one that keeps them, or of two that do not, the one that loses
+            less). Computed over the rows given: one generation to breed it, a
+            whole run to find its best (a clean one if it has any).
         """
         weights = np.array(list(self.weights_at(generation).values()))
         with np.errstate(invalid="ignore", over="ignore"):
             total = terms @ weights
         bad = failed | np.isnan(terms).any(axis=1) | ~np.isfinite(total)
-        return np.where(bad, WORST_FITNESS, total)
+        total = np.where(bad, WORST_FITNESS, total)
+        if not self.constraints or generation < self.phase_in.start:
+            return total
+        columns = [self.names.index(name) for name in self.constraints]
+        loss = -np.minimum(terms[:, columns], 0.0).sum(axis=1)
+        kept = ~bad & (loss == 0)
+        floor = total[kept].min() if kept.any() else 0.0
+        return np.where(bad | kept, total, floor - loss)
 
     def to_dict(self) -> dict[str, Any]:
-        """A JSON/TOML-safe description (see `from_dict`)."""
-        return {
+        """A JSON/TOML-safe description (see `from_dict`); ``constraints`` only if any."""
+        doc: dict[str, Any] = {
             "main": self.main,
             "weights": dict(self.weights),
             "phase_in": {"start": self.phase_in.start, "full": self.phase_in.full},
         }
+        if self.constraints:
+            doc["constraints"] = list(self.constraints)
+        return doc
 
     @classmethod
     def from_dict(cls, doc: Mapping[str, Any]) -> FitnessSpec:
@@ -130,9 +161,16 @@ class FitnessSpec:
                 main=str(doc["main"]),
                 weights={str(k): float(v) for k, v in doc["weights"].items()},
                 phase_in=PhaseIn(start=int(phase.get("start", 0)), full=int(phase.get("full", 0))),
+                constraints=_names(doc.get("constraints", [])),
             )
         except (KeyError, TypeError, ValueError, AttributeError):
             raise FitnessError("malformed fitness description") from None
+
+
+def _names(value: object) -> tuple[str, ...]:
+    if not isinstance(value, list) or not all(isinstance(n, str) for n in value):
+        raise TypeError("not a list of names")
+    return tuple(value)
 
 
 def parse_weights(text: str) -> dict[str, float]:

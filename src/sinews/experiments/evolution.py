@@ -360,7 +360,7 @@ def retune_fitness(
             raise SinewsError(f"run {run_id} has no fitness term {name!r}")
         if name == spec.main:
             raise SinewsError(f"{name} is the main goal: it always counts in full")
-    new = FitnessSpec(spec.main, {**spec.weights, **weights}, phase_in)
+    new = dataclasses.replace(spec, weights={**spec.weights, **weights}, phase_in=phase_in)
     history = [*old.get("fitness_history", []),
                {"until": info.generations, "fitness": spec.to_dict()}]  # fmt: skip
     store.update_config(run_id, {**old, "fitness": new.to_dict(), "fitness_history": history})

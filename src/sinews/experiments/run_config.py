@@ -10,6 +10,7 @@ A run file looks like this (every key optional)::
     fitness = ["beat-align", "liveliness"]   # the main goal first
     weights = { liveliness = 0.2 }
     phase_in = { start = 5, full = 15 }
+    constraints = ["head"]        # style terms that must be 0 (feasible first)
 
     [strategy]
     name = "ga"
@@ -32,7 +33,8 @@ from sinews.limits import MAX_GENERATIONS, MAX_POPULATION
 
 __all__ = ["ConfigError", "EvolutionConfig", "build_config", "fitness_spec", "load_toml"]
 
-_COMMON = ("population", "generations", "seed", "fitness", "weights", "phase_in", "strategy")
+_COMMON = ("population", "generations", "seed", "fitness", "weights", "phase_in", "constraints",
+           "strategy")
 
 
 class ConfigError(SinewsError):
@@ -122,6 +124,7 @@ def fitness_spec(
     weights: Mapping[str, float],
     phase_in: PhaseIn,
     defaults: Mapping[str, float],
+    constraints: Sequence[str] = (),
 ) -> FitnessSpec:
     """The fitness spec of a list of terms, the first being the main goal.
 
@@ -130,9 +133,11 @@ def fitness_spec(
         weights: weights given by the user (each must name a term in ``names``).
         phase_in: the style phase-in.
         defaults: every known term and its default weight.
+        constraints: style terms in ``names`` that must be 0 (`FitnessSpec`).
 
     Raises:
-        FitnessError: an unknown or repeated term, or a weight for a term not used.
+        FitnessError: an unknown or repeated term, or a weight or constraint for a
+            term not used.
     """
     if not names:
         raise FitnessError("--fitness needs at least one term")
@@ -146,10 +151,17 @@ def fitness_spec(
     for name in weights:
         if name not in names:
             raise FitnessError(f"--weights sets {name!r}, which is not one of the --fitness terms")
+    for name in constraints:
+        if name not in names[1:]:
+            raise FitnessError(
+                f"constraints: {name!r} is not one of this run's style terms "
+                f"({', '.join(names[1:]) or 'none'})"
+            )
     return FitnessSpec(
         main=names[0],
         weights={n: float(weights.get(n, defaults[n])) for n in names},
         phase_in=phase_in,
+        constraints=tuple(constraints),
     )
 
 
@@ -193,6 +205,7 @@ def build_config(
         weights=_weights(merged.get("weights") or {}),
         phase_in=_phase_in(merged["phase_in"]),
         defaults=term_defaults,
+        constraints=_constraints(merged.get("constraints") or []),
     )
     try:
         config = EvolutionConfig(
@@ -214,6 +227,12 @@ def _names(value: object) -> list[str]:
     if isinstance(value, list) and all(isinstance(n, str) for n in value):
         return list(value)
     raise ConfigError("fitness must be a list of term names")
+
+
+def _constraints(value: object) -> list[str]:
+    if isinstance(value, list) and all(isinstance(n, str) for n in value):
+        return value
+    raise ConfigError("constraints must be a list of term names")
 
 
 def _weights(value: object) -> dict[str, float]:
