@@ -33,8 +33,8 @@ from sinews.limits import MAX_GENERATIONS, MAX_POPULATION
 
 __all__ = ["ConfigError", "EvolutionConfig", "build_config", "fitness_spec", "load_toml"]
 
-_COMMON = ("population", "generations", "seed", "fitness", "weights", "phase_in", "constraints",
-           "strategy")
+_COMMON = ("population", "generations", "seed", "fitness", "weights", "phase_in",
+           "constraints", "strategy")  # fmt: skip
 
 
 class ConfigError(SinewsError):
