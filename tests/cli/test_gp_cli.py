@@ -235,10 +235,37 @@ def test_a_group_of_runs_and_a_run_that_stops_when_adequate(tmp_path: Path) -> N
         (["--target", "5"], "0.5 to 2 m"),
         (["--until", "-1"], "until must be between"),
         (["--config", "bad.toml"], "unknown setting 'bogus'"),
+        (["--config", "toes.toml"], "'toes' is not one of this run's style terms"),
+        (["--config", "goal.toml"], "'distance' is not one of this run's style terms"),
+        (["--config", "text.toml"], "constraints must be a list of term names"),
     ],
 )
 def test_bad_group_and_termination_settings(tmp_path: Path, extra: list[str], message: str) -> None:
     (tmp_path / "bad.toml").write_text("population = 10\nbogus = 3\n")
+    (tmp_path / "toes.toml").write_text('constraints = ["head", "toes"]\n')
+    (tmp_path / "goal.toml").write_text('constraints = ["distance"]\n')
+    (tmp_path / "text.toml").write_text('constraints = "head"\n')
     args = ["evolve", "luxo", "--controller", "gp", "--task", "hop", *extra, "--db", "r.db"]
     done = subprocess.run([*sinews_command(), *args], capture_output=True, text=True, cwd=tmp_path)
     assert done.returncode == 2 and done.stderr.count("\n") == 1 and message in done.stderr
+
+
+def test_constraints_put_every_clean_program_first(tmp_path: Path) -> None:
+    (tmp_path / "clean.toml").write_text('constraints = ["head", "fallen"]\n')
+    db = str(tmp_path / "r.db")
+    args = ["evolve", "luxo", "--controller", "gp", "--task", "hop", "--target", "1.0",
+            "--population", "24", "--generations", "3", "--seconds", "1.5", "--seed", "2",
+            "--config", str(tmp_path / "clean.toml"), "--db", db]  # fmt: skip
+    done = subprocess.run([*sinews_command(), *args], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    with RunStore(db) as store:
+        (info,) = store.runs()
+        assert info.config["fitness"]["constraints"] == ["head", "fallen"]
+        start = info.config["fitness"]["phase_in"]["start"]
+        for generation in range(start, info.generations):
+            rated = [i for i in store.individuals(1, generation) if not i.failed and i.terms]
+            kept = [(i.terms or {})["head"] == 0 == (i.terms or {})["fallen"] for i in rated]
+            clean = [float(i.fitness or 0) for i, k in zip(rated, kept, strict=True) if k]
+            unclean = [float(i.fitness or 0) for i, k in zip(rated, kept, strict=True) if not k]
+            assert clean and unclean  # both kinds, so the rule is seen at work
+            assert min(clean) > max(unclean)

@@ -1,11 +1,15 @@
-"""Fitness specs: weights, the phase-in schedule, failures, parsing."""
+"""Fitness specs: weights, the phase-in schedule, constraints, failures, parsing."""
 
 from __future__ import annotations
+
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 from sinews.evolve import WORST_FITNESS, FitnessError, FitnessSpec, PhaseIn, parse_weights
+from sinews.experiments.evolution import retune_fitness
+from sinews.store import RunStore
 
 
 def test_phase_in_is_zero_then_linear_then_full() -> None:
@@ -62,3 +66,56 @@ def test_parse_weights() -> None:
         parse_weights("a=1,b")
     with pytest.raises(FitnessError, match="name=number"):
         parse_weights("a=x")
+
+
+def constrained(start: int = 1) -> FitnessSpec:
+    return FitnessSpec(
+        main="goal",
+        weights={"goal": 1.0, "head": 1.0, "fallen": 2.0},
+        phase_in=PhaseIn(start=start, full=start + 1),
+        constraints=("head", "fallen"),
+    )
+
+
+def test_constraints_rank_every_clean_individual_first() -> None:
+    terms = np.array(
+        [
+            [-0.50, 0.0, 0.0],  # clean, far: -0.5
+            [-0.01, -0.02, 0.0],  # near, touches: loses 0.02
+            [-1.00, 0.0, 0.0],  # clean, farther: the floor, -1.0
+            [-0.02, -0.002, -0.001],  # near, loses 0.003
+            [np.nan, 0.0, 0.0],  # failed
+        ]
+    )
+    failed = np.zeros(5, dtype=bool)
+    before = constrained(start=3).combine(terms, failed, 2)
+    np.testing.assert_allclose(before[:4], terms[:4, 0])  # before the start: the goal only
+    after = constrained().combine(terms, failed, 5)
+    np.testing.assert_allclose(after, [-0.5, -1.02, -1.0, -1.003, WORST_FITNESS])
+    assert list(np.argsort(-after)) == [0, 2, 3, 1, 4]
+
+
+def test_without_a_clean_individual_the_least_loss_wins() -> None:
+    terms = np.array([[0.0, -0.5, 0.0], [-3.0, 0.0, -0.1], [-1.0, -0.2, -0.2]])
+    fitness = constrained().combine(terms, np.array([False, False, True]), 4)
+    np.testing.assert_allclose(fitness, [-0.5, -0.1, WORST_FITNESS])
+
+
+def test_constraints_round_trip_and_must_be_style_terms() -> None:
+    assert FitnessSpec.from_dict(constrained().to_dict()) == constrained()
+    assert "constraints" not in spec().to_dict()  # an old run's config is unchanged
+    assert FitnessSpec.from_dict(spec().to_dict()).constraints == ()
+    for bad in (("goal",), ("toes",), ("head", "head")):
+        with pytest.raises(FitnessError, match="constraint"):
+            FitnessSpec(main="goal", weights={"goal": 1.0, "head": 1.0}, constraints=bad)
+    with pytest.raises(FitnessError, match="malformed"):
+        FitnessSpec.from_dict({**constrained().to_dict(), "constraints": "head"})
+
+
+def test_retuning_a_run_keeps_its_constraints(tmp_path: Path) -> None:
+    with RunStore(tmp_path / "r.db") as store:
+        config = {"fitness": constrained().to_dict()}
+        run_id = store.create_run("gp-luxo", config=config, seed=0, genome_codec="json")
+        new = retune_fitness(store, run_id, {"fallen": 4.0}, PhaseIn(0, 3))
+        assert new.constraints == ("head", "fallen") and new.weights["fallen"] == 4.0
+        assert FitnessSpec.from_dict(store.run(run_id).config["fitness"]) == new
