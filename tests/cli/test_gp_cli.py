@@ -20,6 +20,7 @@ from sinews.control.gp import format_program
 from sinews.experiments.gp.run import KIND as EXPERIMENT
 from sinews.experiments.gp.settings import GPSettings
 from sinews.experiments.kinds import best_of
+from sinews.experiments.run_files import fitness_plot
 from sinews.figures import luxo
 from sinews.figures.tasks import standing_height
 from sinews.render import FigureGeometry, FigurePainter, TaskScene
@@ -269,3 +270,4 @@ def test_constraints_put_every_clean_program_first(tmp_path: Path) -> None:
             unclean = [float(i.fitness or 0) for i, k in zip(rated, kept, strict=True) if not k]
             assert clean and unclean  # both kinds, so the rule is seen at work
             assert min(clean) > max(unclean)
+        assert fitness_plot(store, 1).marks["style and constraints start"] == start

@@ -80,7 +80,8 @@ def fitness_plot(store: RunStore, run_id: int) -> FitnessPlot:
     marks: dict[str, float] = {}
     if spec.phase_in.full > 0 and len(weighed) > 1:  # early bests are rated without style
         series["best at full weight"] = full_weight_bests(store.scores(run_id), spec)
-        marks = {"style starts": spec.phase_in.start, "style full": spec.phase_in.full}
+        start = "style and constraints start" if spec.constraints else "style starts"
+        marks = {start: spec.phase_in.start, "style full": spec.phase_in.full}
     song = info.config.get("song", "")
     title = f"run {run_id}: {info.kind}{f' to {song}' if song else ''}"
     title += " (terms of each best)" if terms else ""
