@@ -87,9 +87,13 @@ class FitnessSpec:
         if self.main not in self.weights:
             raise FitnessError(f"the main goal {self.main!r} needs a weight")
         object.__setattr__(self, "constraints", tuple(self.constraints))
+        style = [name for name in self.weights if name != self.main]
         for name in self.constraints:
-            if name not in self.weights or name == self.main:
-                raise FitnessError(f"constraint {name!r} must be one of the style terms")
+            if name not in style:
+                raise FitnessError(
+                    f"constraints: {name!r} is not one of this run's style terms "
+                    f"({', '.join(style) or 'none'})"
+                )
         if len(set(self.constraints)) != len(self.constraints):
             raise FitnessError("constraints name a term twice")
         for name, weight in self.weights.items():
