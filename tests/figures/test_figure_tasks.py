@@ -188,3 +188,18 @@ def test_tracked_sites_are_measured_from_the_first_tick() -> None:
     assert at_rest[figure.sensor_index("z_hand_r")] == pytest.approx(0.815, abs=0.01)
     terms = dict(zip(task.weights, meter.terms()[0], strict=True))
     assert terms["early"] == 0.0 and terms["distance"] < -0.5  # the hand hangs far from the nose
+
+
+def test_a_hand_touches_within_two_centimetres() -> None:
+    """Two hands held still for 3 s, 4 cm and 1 cm from a fixed point: only the second has
+    arrived, so "settled early" cannot outbid ending closer."""
+    task = humanoid_reach((0.45, 1.3))
+    meter = TaskMeter(task, 2)
+    for k in range(31):
+        t = k / 10
+        sensors = sensors_for(task, time=[t, t], x_hand_r=[0.41, 0.44], z_hand_r=[1.3, 1.3])
+        meter(t, sensors, np.tile(task.figure.neutral, (2, 1)))
+    terms = meter.terms()
+    early, distance = (list(task.weights).index(name) for name in ("early", "distance"))
+    np.testing.assert_allclose(terms[:, distance], [-0.04, -0.01])
+    assert terms[0, early] == 0.0 and terms[1, early] == pytest.approx(1.0)

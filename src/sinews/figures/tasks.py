@@ -201,6 +201,12 @@ def luxo_limbo(
     )
 
 
+TOUCH = 0.02
+"""A hand touches its target within this, m: the reach's goal radius (the lamp's X is 0.05 m).
+With 0.05 m, "settled early" (weight 0.2) outbid precision: a hand held 4.6 cm from the nose
+from the first second outscored one that ended 1 cm from it a second later."""
+
+
 def humanoid_reach(
     target: tuple[float, float] | str = (0.45, 1.3), *, seconds: float = 3.0
 ) -> Task:
@@ -221,7 +227,9 @@ def humanoid_reach(
     return Task(
         name="humanoid-reach",
         figure=figure,
-        goal=Goal(tracked=("x_hand_r", "z_hand_r"), target=goal_at, names=("gx", "gz")),
+        goal=Goal(
+            tracked=("x_hand_r", "z_hand_r"), target=goal_at, names=("gx", "gz"), radius=TOUCH
+        ),
         joints=joints,
         sensors=(
             "time",
