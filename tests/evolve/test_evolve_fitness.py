@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
-import math
 from pathlib import Path
 
 import numpy as np
@@ -101,27 +99,6 @@ def test_without_a_clean_individual_the_least_loss_wins() -> None:
     terms = np.array([[0.0, -0.5, 0.0], [-3.0, 0.0, -0.1], [-1.0, -0.2, -0.2]])
     fitness = constrained().combine(terms, np.array([False, False, True]), 4)
     np.testing.assert_allclose(fitness, [-0.5, -0.1, WORST_FITNESS])
-
-
-def test_a_tolerance_eases_the_constraints_in() -> None:
-    """A loss of 0.02 is kept at the start (tolerance 0.05), not at half weight (0.025 > 0.02
-    is kept, 0.03 is not) and never at full weight."""
-    tolerant = dataclasses.replace(constrained(), phase_in=PhaseIn(2, 5), tolerance=0.05)
-    terms = np.array([[-0.50, 0.0, 0.0], [-0.01, -0.02, 0.0], [-0.02, -0.03, 0.0]])
-    failed = np.zeros(3, dtype=bool)
-    start = tolerant.combine(terms, failed, 2)  # style factor 1/4: tolerance 0.0375
-    np.testing.assert_allclose(start, terms @ [1.0, 0.25, 0.5])  # all three kept
-    half = tolerant.combine(terms, failed, 3)  # factor 1/2: tolerance 0.025
-    np.testing.assert_allclose(half, [-0.5, -0.02, -0.5 - 0.03])
-    full = tolerant.combine(terms, failed, 5)
-    np.testing.assert_allclose(full, [-0.5, -0.52, -0.53])
-    assert FitnessSpec.from_dict(tolerant.to_dict()) == tolerant
-    assert "tolerance" not in constrained().to_dict()
-    for bad in (-0.1, math.inf, math.nan):
-        with pytest.raises(FitnessError, match="tolerance"):
-            dataclasses.replace(tolerant, tolerance=bad)
-    with pytest.raises(FitnessError, match="with constraints"):
-        dataclasses.replace(spec(), tolerance=0.1)
 
 
 def test_constraints_round_trip_and_must_be_style_terms() -> None:

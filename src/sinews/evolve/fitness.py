@@ -13,9 +13,6 @@ Some style terms may be *constraints* (e.g. the head never on the floor): from
 the phase-in's start on, Deb's feasibility rule (2000) ranks every individual
 that loses nothing on them above every one that does, and those that do by
 how much they lose, so a few centimetres of the goal can never buy a fall.
-A *tolerance* eases them in (the ε-constrained method, Takahama & Sakai 2005):
-a loss up to it counts as kept at the phase-in's start, and the tolerance shrinks
-with the rising style weight to 0 at full weight.
 """
 
 from __future__ import annotations
@@ -79,15 +76,12 @@ class FitnessSpec:
         constraints: style terms (penalties, at most 0) that must be 0: from
             ``phase_in.start`` on, an individual below 0 on any of them ranks
             below every individual that is not (see `combine`).
-        tolerance: the summed constraint loss still counted as kept at
-            ``phase_in.start``; it shrinks to 0 as the style weight reaches full.
     """
 
     main: str
     weights: Mapping[str, float]
     phase_in: PhaseIn = field(default_factory=PhaseIn)
     constraints: tuple[str, ...] = ()
-    tolerance: float = 0.0
 
     def __post_init__(self) -> None:
         if self.main not in self.weights:
@@ -102,10 +96,6 @@ class FitnessSpec:
                 )
         if len(set(self.constraints)) != len(self.constraints):
             raise FitnessError("constraints name a term twice")
-        if not 0.0 <= self.tolerance < math.inf or (self.tolerance and not self.constraints):
-            raise FitnessError(
-                f"a constraint tolerance must be 0 or more, with constraints; got {self.tolerance}"
-            )
         for name, weight in self.weights.items():
             if not math.isfinite(weight):
                 raise FitnessError(f"weight of {name!r} must be a finite number, got {weight}")
@@ -136,8 +126,7 @@ class FitnessSpec:
         Returns:
             (P,) weighted sums; `WORST_FITNESS` where failed or any term is NaN.
             With constraints, from ``phase_in.start`` on: the sums of those
-            that lose nothing on them (or no more than the tolerance at this
-            generation's weight); below the least of these, each other
+            that lose nothing on them; below the least of these, each other
             one's total loss on them (Deb's rule: a tournament then prefers
             the one that keeps them, or of two that do not, the one that loses
             less). Computed over the rows given: one generation to breed it, a
@@ -152,8 +141,7 @@ class FitnessSpec:
             return total
         columns = [self.names.index(name) for name in self.constraints]
         loss = -np.minimum(terms[:, columns], 0.0).sum(axis=1)
-        allowed = self.tolerance * (1.0 - self.phase_in.factor(generation))
-        kept = ~bad & (loss <= allowed)
+        kept = ~bad & (loss == 0)
         floor = total[kept].min() if kept.any() else 0.0
         return np.where(bad | kept, total, floor - loss)
 
@@ -166,8 +154,6 @@ class FitnessSpec:
         }
         if self.constraints:
             doc["constraints"] = list(self.constraints)
-        if self.tolerance:
-            doc["tolerance"] = self.tolerance
         return doc
 
     @classmethod
@@ -180,7 +166,6 @@ class FitnessSpec:
                 weights={str(k): float(v) for k, v in doc["weights"].items()},
                 phase_in=PhaseIn(start=int(phase.get("start", 0)), full=int(phase.get("full", 0))),
                 constraints=_names(doc.get("constraints", [])),
-                tolerance=float(doc.get("tolerance", 0.0)),
             )
         except (KeyError, TypeError, ValueError, AttributeError):
             raise FitnessError("malformed fitness description") from None

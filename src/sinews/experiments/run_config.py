@@ -11,7 +11,6 @@ A run file looks like this (every key optional)::
     weights = { liveliness = 0.2 }
     phase_in = { start = 5, full = 15 }
     constraints = ["head"]        # style terms that must be 0 (feasible first)
-    constraint_tolerance = 0.1    # their loss allowed at the phase-in's start, shrinking to 0
 
     [strategy]
     name = "ga"
@@ -35,7 +34,7 @@ from sinews.limits import MAX_GENERATIONS, MAX_POPULATION
 __all__ = ["ConfigError", "EvolutionConfig", "build_config", "fitness_spec", "load_toml"]
 
 _COMMON = ("population", "generations", "seed", "fitness", "weights", "phase_in",
-           "constraints", "constraint_tolerance", "strategy")  # fmt: skip
+           "constraints", "strategy")  # fmt: skip
 
 
 class ConfigError(SinewsError):
@@ -126,7 +125,6 @@ def fitness_spec(
     phase_in: PhaseIn,
     defaults: Mapping[str, float],
     constraints: Sequence[str] = (),
-    tolerance: float = 0.0,
 ) -> FitnessSpec:
     """The fitness spec of a list of terms, the first being the main goal.
 
@@ -136,7 +134,6 @@ def fitness_spec(
         phase_in: the style phase-in.
         defaults: every known term and its default weight.
         constraints: style terms in ``names`` that must be 0 (`FitnessSpec`).
-        tolerance: their loss allowed at the phase-in's start (`FitnessSpec`).
 
     Raises:
         FitnessError: an unknown or repeated term, a weight for a term not used, or
@@ -159,7 +156,6 @@ def fitness_spec(
         weights={n: float(weights.get(n, defaults[n])) for n in names},
         phase_in=phase_in,
         constraints=tuple(constraints),
-        tolerance=tolerance,
     )
 
 
@@ -204,7 +200,6 @@ def build_config(
         phase_in=_phase_in(merged["phase_in"]),
         defaults=term_defaults,
         constraints=_constraints(merged.get("constraints") or []),
-        tolerance=_number(merged.get("constraint_tolerance", 0.0), "constraint_tolerance"),
     )
     try:
         config = EvolutionConfig(
@@ -232,12 +227,6 @@ def _constraints(value: object) -> list[str]:
     if isinstance(value, list) and all(isinstance(n, str) for n in value):
         return value
     raise ConfigError("constraints must be a list of term names")
-
-
-def _number(value: object, key: str) -> float:
-    if isinstance(value, int | float) and not isinstance(value, bool):
-        return float(value)
-    raise ConfigError(f"{key} must be a number, got {value!r}")
 
 
 def _weights(value: object) -> dict[str, float]:
