@@ -47,6 +47,7 @@ __all__ = [
     "STYLE",
     "TASKS",
     "TERMS",
+    "TOUCH",
     "Goal",
     "Task",
     "TaskMeter",
@@ -215,7 +216,7 @@ def humanoid_reach(
     The controller drives the waist, neck, right shoulder and right elbow; the
     other joints hold the standing pose. It sees those angles, both feet's
     floor forces, its hand's position, time, and the hand-to-target vector
-    (``gx``, ``gz``).
+    (``gx``, ``gz``). The hand has arrived within `TOUCH`.
     """
     figure = _with_sites(humanoid(), {"hand_r": ("forearm_r", (0, 0, -0.305)),
                                       "nose": ("head", (0.1, 0, 0.1))})  # fmt: skip
