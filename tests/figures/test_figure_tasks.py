@@ -13,6 +13,8 @@ from sinews.figures.task import MAIN_GOALS
 from sinews.figures.tasks import (
     TASKS,
     TERMS,
+    TOUCH_HOLD,
+    Goal,
     Task,
     TaskMeter,
     humanoid_reach,
@@ -203,3 +205,26 @@ def test_a_hand_touches_within_two_centimetres() -> None:
     early, distance = (list(task.weights).index(name) for name in ("early", "distance"))
     np.testing.assert_allclose(terms[:, distance], [-0.04, -0.01])
     assert terms[0, early] == 0.0 and terms[1, early] == pytest.approx(1.0)
+
+
+def test_a_touch_is_held_not_swung_through() -> None:
+    """Over 3 s, one hand swings through the point and is on it at the last tick; another
+    rests 1 cm from it for the last second: the reach rates the farthest either gets over
+    the last `TOUCH_HOLD` seconds, so only the second touches."""
+    task = humanoid_reach((0.45, 1.3))
+    meter = TaskMeter(task, 2)
+    for k in range(31):
+        t = k / 10
+        swing = 0.45 + 0.1 * np.sin(2 * np.pi * (t - 3.0) / 1.2)  # through x = 0.45 at 3 s
+        rest = 0.46 if t >= 2.0 else 0.2
+        sensors = sensors_for(task, time=[t, t], x_hand_r=[swing, rest], z_hand_r=[1.3, 1.3])
+        meter(t, sensors, np.tile(task.figure.neutral, (2, 1)))
+    distance = meter.terms()[:, list(task.weights).index("distance")]
+    assert TOUCH_HOLD >= 0.3 and distance[1] == pytest.approx(-0.01)
+    assert distance[0] == pytest.approx(-0.1)  # the swing's far end, at 2.7 s
+
+
+@pytest.mark.parametrize("hold", [-0.1, float("nan")])
+def test_a_goal_holds_for_zero_seconds_or_more(hold: float) -> None:
+    with pytest.raises(FigureError, match="holds for 0 s or more"):
+        Goal(tracked=("root_x",), target=(1.0,), names=("gx",), hold=hold)

@@ -105,7 +105,9 @@ class Goal:
 
     Three kinds: a **position** (the tracked point on the target); a **direction**
     (with ``origin``: the angle at the origin between the tracked point and the
-    target, rad — pointing); a **wave** (with ``wave``, see `Wave`).
+    target, rad — pointing); a **wave** (with ``wave``, see `Wave`). A position or
+    direction is measured at the end, or, with ``hold``, as the farthest it gets from
+    the target over the last ``hold`` seconds (a touch must be held, not swung through).
 
     Attributes:
         tracked: sensor columns of the point, one per axis (e.g. ``("root_x",)``).
@@ -115,6 +117,7 @@ class Goal:
         radius: the point has arrived within this distance, m (rad for a direction).
         origin: sensor columns of the origin of a direction goal, one per axis, or none.
         wave: a wave goal's rate, amplitude and window, or None.
+        hold: s at the end over which the goal is measured (its worst), or 0: at the end.
     """
 
     tracked: tuple[str, ...]
@@ -123,6 +126,7 @@ class Goal:
     radius: float = 0.05
     origin: tuple[str, ...] = ()
     wave: Wave | None = None
+    hold: float = 0.0
 
     def __post_init__(self) -> None:
         if not (len(self.tracked) == len(self.target) >= 1):
@@ -135,6 +139,9 @@ class Goal:
             raise FigureError("a wave goal tracks two axes (swing, height) and has no origin")
         if not self.radius > 0:
             raise FigureError(f"the goal radius must be positive, got {self.radius}")
+        if not self.hold >= 0 or (self.hold and self.wave is not None):
+            raise FigureError(f"a position or direction goal holds for 0 s or more (a wave has "
+                              f"its own window), got {self.hold}")  # fmt: skip
 
 
 @dataclass(frozen=True, eq=False)

@@ -8,8 +8,10 @@ The terms (`TERMS`), each **higher is better** (penalties are ≤ 0), as
 `sinews.evolve.fitness` expects:
 
 - ``distance`` (the main goal): minus the tracked point's distance to the
-  target at the end, m. For a direction goal (pointing), minus the angle at
-  the origin between the tracked point and the target at the end, rad; for a
+  target at the end, m, or, for a goal with a ``hold``, the farthest it is
+  over the trial's last ``hold`` seconds. For a direction goal (pointing),
+  minus the angle at the origin between the tracked point and the target
+  (at the end, or the largest over the hold), rad; for a
   wave, minus how far the last seconds fall short of the wave, m (the
   missing amplitude at the wave's rate, plus how far the swing's centre
   lies beyond its bound, plus the mean depth below the required height).
@@ -50,6 +52,8 @@ A dance's terms (they need the song's beat times, ``TaskMeter(..., beats=...)``)
 """
 
 from __future__ import annotations
+
+from collections import deque
 
 import numpy as np
 import numpy.typing as npt
@@ -118,6 +122,8 @@ class TaskMeter:
         self._path = np.zeros(n)
         self._previous = np.zeros((n, len(self._tracked)))
         self._distance = np.zeros(n)
+        # (time, (P,) distance) of the ticks within ``goal.hold`` of the latest
+        self._history: deque[tuple[float, FloatArray]] | None = deque() if goal.hold else None
         self._head_ticks = np.zeros(n)
         self._fallen_ticks = np.zeros(n)
         self._touch_ticks = np.zeros(n)
@@ -147,6 +153,10 @@ class TaskMeter:
         self._arrival = np.where(~arrived & inside, t, self._arrival)
         self._settled = np.where(inside, np.minimum(self._settled, t), np.inf)
         self._previous = point
+        if self._history is not None:
+            self._history.append((t, self._distance))
+            while self._history[0][0] < t - self.task.goal.hold - 1e-9:
+                self._history.popleft()
         self._head_ticks += _touching(sensors, self._head)
         self._touch_ticks += _touching(sensors, self._touch)
         z, pitch = sensors[:, self._root[0]], sensors[:, self._root[1]]
@@ -210,7 +220,7 @@ class TaskMeter:
         duration = self._last_t if self._last_t > 0 else 1.0
         early = np.where(np.isfinite(self._settled), 1.0 - self._settled / duration, 0.0)
         values = {
-            "distance": -self._distance,
+            "distance": -self._held() if self._history is not None else -self._distance,
             "early": early,
             "still": -self._path,
             "head": -self._head_ticks / n,
@@ -223,6 +233,11 @@ class TaskMeter:
         if self._angles is not None:
             values |= self._dance_terms()
         return np.column_stack([values[name] for name in self.task.weights])
+
+    def _held(self) -> FloatArray:
+        """(P,) the farthest from the goal over the last ``goal.hold`` seconds observed."""
+        assert self._history
+        return np.max([d for _, d in self._history], axis=0)
 
     def _dance_terms(self) -> dict[str, FloatArray]:
         """``lift``, ``joints`` and ``smooth`` from the recorded (T, P, J) driven angles."""

@@ -360,6 +360,8 @@ def _summary(task: Task, terms: npt.NDArray[np.float64]) -> str:
         return f"{math.degrees(-main):.1f}° off the target"
     if task.goal.wave is not None:
         return f"{-main:.3f} m short of the wave"
+    if task.goal.hold:
+        return f"{-main:.3f} m from the goal at most over the last {task.goal.hold:g} s"
     return f"{-main:.3f} m from the goal"
 
 
