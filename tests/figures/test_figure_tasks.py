@@ -224,6 +224,21 @@ def test_a_touch_is_held_not_swung_through() -> None:
     assert distance[0] == pytest.approx(-0.1)  # the swing's far end, at 2.7 s
 
 
+def test_a_hand_that_came_near_once_is_not_outranked_by_one_that_never_did() -> None:
+    """At full style weight: a hand that passes the nose at 1 s and ends held 3.7 cm from
+    it rates above one held 5 cm away throughout (`still` counted the first one's path)."""
+    task = humanoid_reach("nose")
+    meter = TaskMeter(task, 2)
+    nose = {"x_nose": [0.1, 0.1], "z_nose": [1.6, 1.6]}
+    for k in range(31):
+        t = k / 10
+        passing = 0.1 + abs(t - 1.0) * 0.05 if t < 1.74 else 0.137
+        columns = {"x_hand_r": [passing, 0.15], "z_hand_r": [1.6, 1.6], **nose}
+        meter(t, sensors_for(task, time=[t, t], **columns), np.tile(task.figure.neutral, (2, 1)))
+    fitness = meter.terms() @ np.array(list(task.weights.values()))
+    assert fitness[0] > fitness[1]
+
+
 @pytest.mark.parametrize("hold", [-0.1, float("nan")])
 def test_a_goal_holds_for_zero_seconds_or_more(hold: float) -> None:
     with pytest.raises(FigureError, match="holds for 0 s or more"):
