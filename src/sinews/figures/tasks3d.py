@@ -28,15 +28,7 @@ from sinews.figures.figure import Figure, FigureError
 from sinews.figures.humanoid3d import humanoid3d
 from sinews.figures.luxo3d import luxo3d
 from sinews.figures.mjcf import fmt
-from sinews.figures.task import (
-    STYLE,
-    TOUCH_HOLD,
-    Goal,
-    Task,
-    Wave,
-    dance_task,
-    standing_height,
-)
+from sinews.figures.task import STYLE, TOUCH_HOLD, Goal, Task, Wave, dance_task, standing_height
 
 __all__ = [
     "ARM_L",
