@@ -59,6 +59,10 @@ def test_out_of_turn_calls_are_refused() -> None:
         {"tournament_size": 0},
         {"init_depth": (4, 2)},
         {"max_size": 1},
+        {"crossover_rate": 0.8, "mutation_rate": 0.1, "tweak_rate": 0.2},
+        {"tweak_rate": -0.1},
+        {"tweak_scale": 0.0},
+        {"tweak_scale": float("nan")},
     ],
 )
 def test_bad_options_are_refused(options: dict[str, object]) -> None:
@@ -98,6 +102,21 @@ def test_children_keep_the_list_root_the_limits_and_their_lineage(
         n_pairs = sum(1 for _, second in parents.tolist() if second >= 0)
         assert n_pairs <= round((0.9 - mutation) * 19)
         previous = children
+
+
+def test_tweaked_children_keep_their_parents_shape_and_change_a_constant() -> None:
+    gp = _strategy(4, size=40, crossover_rate=0.5, tweak_rate=0.5, max_copies=1.0)
+    previous = gp.ask()
+    gp.tell(_score(previous))
+    children = gp.ask()
+    tweaked = 0
+    for child, (first, second) in zip(children, gp.parents.tolist(), strict=True):
+        if second == -1 and child != previous[first]:
+            parent = previous[first]
+            assert all((c.code == p.code).all() for c, p in zip(child, parent, strict=True))
+            assert sum(c != p for c, p in zip(child, parent, strict=True)) == 1
+            tweaked += 1
+    assert 10 <= tweaked <= 20  # 20 tweaks; a parent without constants comes back as is
 
 
 def test_a_child_over_the_limit_is_drawn_again_not_copied_from_a_parent() -> None:
@@ -159,7 +178,9 @@ def test_selection_favours_the_fit_and_never_picks_the_failed() -> None:
 
 @pytest.mark.parametrize("told", [False, True])
 def test_a_checkpoint_resumes_bit_for_bit(told: bool) -> None:
-    gp = _strategy(5, mutation_rate=0.05, crossover_rate=0.85, selection="proportionate")
+    gp = _strategy(
+        5, mutation_rate=0.05, tweak_rate=0.1, crossover_rate=0.75, selection="proportionate"
+    )
     programs = gp.ask()
     gp.tell(_score(programs))
     programs = gp.ask()

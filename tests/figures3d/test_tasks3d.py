@@ -20,7 +20,7 @@ from sinews.experiments.gp.simulate import measure_programs
 from sinews.figures import rollout
 from sinews.figures.figure import FigureError
 from sinews.figures.luxo3d import LuxoShape3D, luxo3d
-from sinews.figures.tasks import Task, TaskMeter, make_task
+from sinews.figures.tasks import TOUCH_HOLD, Task, TaskMeter, make_task
 from sinews.figures.tasks3d import LUXO3D_SENSORS, TASKS_3D
 
 
@@ -30,23 +30,27 @@ def _held(
     seconds: float | None = None,
     *,
     swing: tuple[str, float] | None = None,
+    rate: float | None = None,
 ) -> dict[str, Any]:
     """The task's terms for the figure holding ``pose`` (others neutral), one joint
-    swinging about it by ± ``swing[1]`` rad at the task's wave rate, if given."""
+    swinging about it by ± ``swing[1]`` rad at ``rate`` Hz (default: the task's wave
+    rate), if given."""
     figure = task.figure
     targets = figure.neutral.copy()
     for joint, angle in pose.items():
         targets[figure.joints.index(joint)] = angle
     controller = HoldPose(targets)
     if swing is not None:
-        assert task.goal.wave is not None
-        rate, (joint, amplitude) = task.goal.wave.rate, swing
+        if rate is None:
+            assert task.goal.wave is not None
+            rate = task.goal.wave.rate
+        hz, (joint, amplitude) = rate, swing
         k = figure.joints.index(joint)
 
         class Swing(HoldPose):
             def control(self, t: float, sensors: np.ndarray) -> np.ndarray:
                 out = super().control(t, sensors).copy()
-                out[:, k] += amplitude * math.sin(2 * math.pi * rate * t)
+                out[:, k] += amplitude * math.sin(2 * math.pi * hz * t)
                 return out
 
         controller = Swing(targets)
@@ -138,6 +142,16 @@ def test_pointing_forward_at_a_point_ahead_scores_a_few_degrees() -> None:
     assert -forward["distance"] < math.radians(10.0)
     assert -resting["distance"] == pytest.approx(math.pi / 2, abs=0.15)
     assert forward["fallen"] == 0.0
+
+
+def test_pointing_is_held_not_swung_through() -> None:
+    """An arm swung up and down through the target's direction (± 0.4 rad at 1 Hz, on it
+    at the last tick) rates its farthest over the last `TOUCH_HOLD` s, not the last tick."""
+    task = make_task("humanoid3d-point", target=(2.5, -0.2, 1.445))
+    assert task.goal.hold == TOUCH_HOLD and task.weights["still"] == 0.0
+    swung = _held(task, {"shoulder_y_r": -math.pi / 2}, 1.5, swing=("shoulder_y_r", 0.4), rate=1.0)
+    held = _held(task, {"shoulder_y_r": -math.pi / 2}, seconds=1.5)
+    assert -swung["distance"] > -held["distance"] + math.radians(10.0)
 
 
 def test_touch_scores_the_fingertips_distance() -> None:

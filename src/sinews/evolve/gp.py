@@ -11,8 +11,9 @@ S-expressions, the generator's ``bit_generator.state``).
 Breeding follows Koza's generational scheme as the paper used it: generation
 0 is ramped half-and-half; each later one is ``crossover_rate`` crossover
 children (made in pairs), ``mutation_rate`` subtree mutants (0 by default, "we
-did not use mutation") and the rest reproduced copies, parents chosen by
-tournament or fitness-proportionately. ``elites`` best individuals may be
+did not use mutation"), ``tweak_rate`` constant tweaks (0 by default; not the
+paper's: `sinews.control.gp.tweak_constants`) and the rest reproduced copies,
+parents chosen by tournament or fitness-proportionately. ``elites`` best individuals may be
 copied first (0 in the paper).
 
 A person may steer it (the studio's hand picks, docs/figure-studio.md):
@@ -53,6 +54,7 @@ from sinews.control.gp import (
     mutate,
     parse_program,
     ramped_half_and_half,
+    tweak_constants,
     within_limits,
 )
 from sinews.evolve._state import decode_rng, encode_rng
@@ -72,7 +74,10 @@ class GPVariation:
 
     Attributes:
         crossover_rate: share of children made by subtree crossover (paper: 0.9).
-        mutation_rate: share made by subtree mutation (paper: 0); the rest are copies.
+        mutation_rate: share made by subtree mutation (paper: 0).
+        tweak_rate: share made by a Gaussian nudge of one tree's constants (paper:
+            0); the rest are copies.
+        tweak_scale: the nudge's standard deviation as a share of the ERC range.
         selection: ``"tournament"`` or ``"proportionate"`` (Koza's adjusted fitness).
         tournament_size: contestants per tournament (3: with 7 the lamp's
             hop runs locked onto one lineage within a few generations).
@@ -88,6 +93,8 @@ class GPVariation:
 
     crossover_rate: float = 0.9
     mutation_rate: float = 0.0
+    tweak_rate: float = 0.0
+    tweak_scale: float = 0.05
     selection: Selection = "tournament"
     tournament_size: int = 3
     any_slot: bool = False
@@ -100,9 +107,13 @@ class GPVariation:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "init_depth", tuple(int(d) for d in self.init_depth))
-        rates = (self.crossover_rate, self.mutation_rate)
-        if min(rates) < 0 or sum(rates) > 1:
-            raise StrategyError("crossover_rate and mutation_rate must be >= 0 and sum to <= 1")
+        rates = (self.crossover_rate, self.mutation_rate, self.tweak_rate)
+        if not (min(rates) >= 0 and sum(rates) <= 1):
+            raise StrategyError(
+                "crossover_rate, mutation_rate and tweak_rate must be >= 0 and sum to <= 1"
+            )
+        if not 0 < self.tweak_scale <= 10:
+            raise StrategyError(f"tweak_scale must be in (0, 10], got {self.tweak_scale}")
         if self.selection not in ("tournament", "proportionate"):
             raise StrategyError(
                 f"selection must be tournament or proportionate, got {self.selection!r}"
@@ -224,6 +235,7 @@ class GPStrategy(AskTell[list[Program]]):
         old, v, size = self._population, self.variation, self.population_size
         n_cross = round(v.crossover_rate * (size - v.elites))
         n_mutate = round(v.mutation_rate * (size - v.elites))
+        n_tweak = min(round(v.tweak_rate * (size - v.elites)), size - v.elites - n_cross - n_mutate)
         elites = np.argsort(-self._fitness, kind="stable")[: v.elites]
         children: list[Program] = [old[i] for i in elites]
         parents = [(int(i), -1) for i in elites]
@@ -238,6 +250,9 @@ class GPStrategy(AskTell[list[Program]]):
                     parents.append((first, second))
         for i in self._select(n_mutate).tolist():
             children.append(self._mutant(old[i]))
+            parents.append((i, -1))
+        for i in self._select(n_tweak).tolist():
+            children.append(tweak_constants(old[i], self.pset, self.rng, scale=v.tweak_scale))
             parents.append((i, -1))
         for i in self._picks.tolist()[: max(0, size - len(children))]:
             children.append(old[i])

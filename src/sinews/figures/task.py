@@ -24,6 +24,7 @@ __all__ = [
     "MAIN_GOALS",
     "STYLE",
     "TERMS",
+    "TOUCH_HOLD",
     "Goal",
     "Task",
     "Wave",
@@ -43,6 +44,11 @@ MAIN_GOALS = ("distance", "lift")
 
 STYLE = {"early": 0.2, "still": 0.5, "head": 3.0, "fallen": 2.0, "neutral": 0.1, "energy": 0.0}
 """Full style weights of the built-in tasks (the main goal ``distance`` weighs 1)."""
+TOUCH_HOLD = 0.5
+"""A touch or a pointing arm is held: the humanoids' reach, touch, nose and point goals are
+rated by the farthest the hand (or the arm's direction) gets from the target over the trial's
+last this many seconds. Rated at the last tick alone, four of five planar reach bests swung
+the hand through the point, or threw the trunk forward as the clock stopped."""
 DANCE_STYLE = {"head": 3.0, "fallen": 2.0, "spot": 0.3, "joints": 0.3, "smooth": 0.3}
 """Full style weights of a dance (the main goal ``lift`` weighs 1): stay upright, near the
 spot, use every driven joint, move smoothly."""

@@ -30,6 +30,7 @@ from sinews.figures.task import (
     DANCE_STYLE,
     STYLE,
     TERMS,
+    TOUCH_HOLD,
     Goal,
     Task,
     Wave,
@@ -207,10 +208,6 @@ TOUCH = 0.02
 """A hand touches its target within this, m: the reach's goal radius (the lamp's X is 0.05 m).
 With 0.05 m, "settled early" (weight 0.2) outbid precision: a hand held 4.6 cm from the nose
 from the first second outscored one that ended 1 cm from it a second later."""
-TOUCH_HOLD = 0.5
-"""A touch is held: the reach is rated by the farthest the hand gets from its target over
-the trial's last this many seconds. Rated at the last tick alone, four of five reach bests
-swung the hand through the point, or threw the trunk forward as the clock stopped."""
 
 
 def humanoid_reach(

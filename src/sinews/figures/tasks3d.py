@@ -28,7 +28,7 @@ from sinews.figures.figure import Figure, FigureError
 from sinews.figures.humanoid3d import humanoid3d
 from sinews.figures.luxo3d import luxo3d
 from sinews.figures.mjcf import fmt
-from sinews.figures.task import STYLE, Goal, Task, Wave, dance_task, standing_height
+from sinews.figures.task import STYLE, TOUCH_HOLD, Goal, Task, Wave, dance_task, standing_height
 
 __all__ = [
     "ARM_L",
@@ -200,8 +200,10 @@ def _refigure(
 
 # -- the humanoid --------------------------------------------------------------
 
-PERSON_STYLE = {**STYLE, "neutral": 0.0}
-"""The humanoid's style weights: the lamp's, without the neutral-pose bonus."""
+PERSON_STYLE = {**STYLE, "neutral": 0.0, "still": 0.0}
+"""The humanoid's style weights: the lamp's, without the neutral-pose bonus, and without
+``still``: its goals are held (`TOUCH_HOLD`), which measures the staying (as in the planar
+reach, where ``still`` ranked a hand that never came near above one that had)."""
 
 
 def _person(target: Sequence[float] | None = None) -> Figure:
@@ -259,22 +261,23 @@ def _person_task(
 def humanoid3d_touch(
     target: Sequence[float] = (0.45, -0.25, 1.25), *, seconds: float = 3.0
 ) -> Task:
-    """Touch a point (x, y, z) with the right fingertips (within 3 cm), turning the trunk if
-    needed: the right arm's four hinges and the waist's turn are driven (5)."""
+    """Touch a point (x, y, z) with the right fingertips (within 3 cm, held: the farthest
+    over the last `TOUCH_HOLD` s), turning the trunk if needed: the right arm's four hinges
+    and the waist's turn are driven (5)."""
     point = _point3("humanoid3d-touch", target)
     goal = Goal(tracked=HAND, target=("f_target", "l_target", "u_target"),
-                names=("gf", "gl", "gu"), radius=0.03)  # fmt: skip
+                names=("gf", "gl", "gu"), radius=0.03, hold=TOUCH_HOLD)  # fmt: skip
     return _person_task("humanoid3d-touch", _person(point), goal, (*ARM_R, "waist_z"), seconds,
                         {"target": list(point)})  # fmt: skip
 
 
 def humanoid3d_point(target: Sequence[float] = (2.0, -1.5, 2.2), *, seconds: float = 3.0) -> Task:
     """Point the right arm at a point (x, y, z): the angle at the shoulder between the
-    fingertips and the target must end within 5° and stay (``still``). Driven: the right
-    arm's four hinges and the waist's turn (5)."""
+    fingertips and the target, its largest over the last `TOUCH_HOLD` s, must be within
+    5°. Driven: the right arm's four hinges and the waist's turn (5)."""
     point = _point3("humanoid3d-point", target)
     goal = Goal(tracked=HAND, target=("f_target", "l_target", "u_target"),
-                names=("gf", "gl", "gu"), radius=math.radians(5.0),
+                names=("gf", "gl", "gu"), radius=math.radians(5.0), hold=TOUCH_HOLD,
                 origin=("f_shoulder_r", "l_shoulder_r", "u_shoulder_r"))  # fmt: skip
     return _person_task("humanoid3d-point", _person(point), goal, (*ARM_R, "waist_z"), seconds,
                         {"target": list(point)})  # fmt: skip
@@ -302,10 +305,11 @@ def humanoid3d_gesture(
 
 
 def humanoid3d_nose(*, seconds: float = 3.0) -> Task:
-    """Put the right fingertips on the tip of the nose (within 3 cm): the right arm's four
-    hinges and the neck's two are driven (6). The hand cannot pass into the head."""
+    """Put the right fingertips on the tip of the nose (within 3 cm, held over the last
+    `TOUCH_HOLD` s): the right arm's four hinges and the neck's two are driven (6). The hand
+    cannot pass into the head."""
     goal = Goal(tracked=HAND, target=("f_nose", "l_nose", "u_nose"), names=("gf", "gl", "gu"),
-                radius=0.03)  # fmt: skip
+                radius=0.03, hold=TOUCH_HOLD)  # fmt: skip
     return _person_task("humanoid3d-nose", _person(), goal, (*ARM_R, "neck_y", "neck_z"),
                         seconds, {})  # fmt: skip
 

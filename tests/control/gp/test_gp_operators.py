@@ -9,13 +9,16 @@ from hypothesis import strategies as st
 from gp_helpers import make_pset, population, seeds
 from sinews.control.gp import (
     Limits,
+    PrimitiveSet,
     Program,
     crossover,
     mutate,
+    parse_tree,
     pick_point,
     program_depth,
     ramped_half_and_half,
     random_tree,
+    tweak_constants,
 )
 from sinews.control.gp.primitives import ARITY, CONST
 
@@ -97,6 +100,37 @@ def test_mutation_changes_one_tree_and_stays_well_typed(seed: int) -> None:
     child = mutate(program, pset, rng, depth=3)
     _assert_well_typed(child, 4)
     assert sum(child[k] != program[k] for k in range(4)) <= 1
+
+
+@settings(max_examples=25, deadline=None)
+@given(seed=seeds)
+def test_a_tweak_nudges_one_trees_constants_and_keeps_its_shape(seed: int) -> None:
+    pset = make_pset(extras=True)
+    (program,) = population(seed, 1, n_trees=4, extras=True)
+    child = tweak_constants(program, pset, np.random.default_rng(seed), scale=0.05)
+    assert child == tweak_constants(program, pset, np.random.default_rng(seed), scale=0.05)
+    _assert_well_typed(child, 4)
+    changed = [k for k in range(4) if child[k] != program[k]]
+    if not any(tree.consts.size for tree in program):
+        assert child is program
+        return
+    assert len(changed) <= 1  # exactly one unless every nudge rounded to nothing
+    for k in changed:
+        np.testing.assert_array_equal(child[k].code, program[k].code)
+        step = child[k].consts - program[k].consts
+        assert np.abs(step).max() < 10 * 0.05 * 10.0  # 10 sigma of 5 % of the range (-5, 5)
+        np.testing.assert_array_equal(child[k].consts, np.round(child[k].consts, 4))
+
+
+def test_a_tweak_without_rounding_moves_every_constant_of_the_tree() -> None:
+    pset = PrimitiveSet(("time",), erc_range=(-1.0, 1.0), erc_decimals=None)
+    tree = parse_tree("(+ 0.5 (* time -0.25))", pset)
+    (child,) = tweak_constants((tree,), pset, np.random.default_rng(1), scale=0.01)
+    np.testing.assert_array_equal(child.code, tree.code)
+    assert (child.consts != tree.consts).all()
+    assert np.abs(child.consts - tree.consts).max() < 0.1
+    bare = (parse_tree("(+ time time)", pset),)
+    assert tweak_constants(bare, pset, np.random.default_rng(1), scale=0.01) is bare
 
 
 @settings(max_examples=25, deadline=None)

@@ -3,9 +3,11 @@ short or SIGKILLed resumes to the uninterrupted one bit for bit."""
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import pytest
 
 from gp_helpers import stored
@@ -17,6 +19,8 @@ from sinews.cli import main
 from sinews.evolve import SerialEvaluator
 from sinews.experiments.evolution import GenerationSummary
 from sinews.experiments.gp.run import KIND as EXPERIMENT
+from sinews.experiments.gp.run import _summary
+from sinews.figures.tasks import make_task
 from sinews.store import RunStore
 
 OPTIONS: dict[str, Any] = {"task": "hop", "target": "1.5", "population": 8, "generations": 8,
@@ -97,3 +101,15 @@ def test_a_replay_says_how_far_from_the_goal_it_ends(whole: Path) -> None:
             distance = (person.terms or {})["distance"]
             assert distance is not None
             assert replay.summary == f"{-distance:.3f} m from the goal"
+
+
+def test_a_held_goal_says_it_is_held() -> None:
+    """A replay of a held goal reports its worst over the hold, in the goal's own unit."""
+    point = make_task("humanoid3d-point", target=(2.0, -1.5, 2.2))
+    nose = make_task("humanoid-reach", target="nose")
+    hop = make_task("luxo-hop", target=1.0)
+    assert _summary(point, np.array([-math.radians(2.5)])) == (
+        "2.5° off the target at most over the last 0.5 s"
+    )
+    assert _summary(nose, np.array([-0.012])) == "0.012 m from the goal at most over the last 0.5 s"
+    assert _summary(hop, np.array([-0.2])) == "0.200 m from the goal"

@@ -29,6 +29,7 @@ from sinews.control.gp.operators import (
     pick_point,
     ramped_half_and_half,
     random_tree,
+    tweak_constants,
     within_limits,
 )
 from sinews.control.gp.primitives import (
@@ -80,5 +81,6 @@ __all__ = [
     "random_tree",
     "reference_population",
     "reference_tree",
+    "tweak_constants",
     "within_limits",
 ]

@@ -5,7 +5,9 @@ so the same generator state gives the same programs.
 
 Koza's choices (the paper follows his book): initial trees of depth 2 to 6,
 half grown and half full; crossover points are function nodes 90% of the
-time; children deeper than 17 are not allowed. Every tree made here is
+time; children deeper than 17 are not allowed. `tweak_constants` is not the
+paper's: a Gaussian nudge of one tree's constants, which subtree operators
+can only replace wholesale. Every tree made here is
 within the `Limits`: random trees respect a size budget as well as a depth
 (a full tree of depth 6 over ``ifltz`` would otherwise have 1093 nodes), and
 a crossover or mutation whose child would break a limit is drawn again at
@@ -33,6 +35,7 @@ __all__ = [
     "pick_point",
     "ramped_half_and_half",
     "random_tree",
+    "tweak_constants",
     "within_limits",
 ]
 
@@ -210,6 +213,28 @@ def mutate(
         budget = max(1, limits.max_size - len(tree) + len(tree.subtree(point)))
     new = random_tree(pset, rng, depth, full=False, max_size=budget)
     return _with(program, slot, tree.replace(point, new))
+
+
+def tweak_constants(
+    program: Program, pset: PrimitiveSet, rng: np.random.Generator, *, scale: float
+) -> Program:
+    """Add Gaussian noise to every constant of one random tree that has constants.
+
+    The noise's standard deviation is ``scale`` times the width of the ERC range;
+    the results are rounded as ERCs are (``pset.erc_decimals``). A program
+    without constants comes back unchanged. The tree's shape never changes, so
+    the child is within any limits its parent is.
+    """
+    with_consts = [k for k, tree in enumerate(program) if tree.consts.size]
+    if not with_consts:
+        return program
+    slot = with_consts[int(rng.integers(len(with_consts)))]
+    tree = program[slot]
+    lo, hi = pset.erc_range
+    consts = tree.consts + rng.normal(0.0, scale * (hi - lo), size=tree.consts.size)
+    if pset.erc_decimals is not None:
+        consts = np.round(consts, pset.erc_decimals)
+    return _with(program, slot, Tree(tree.code, consts))
 
 
 WITHIN_LIMITS_TRIES = 20

@@ -356,13 +356,12 @@ def _summary(task: Task, terms: npt.NDArray[np.float64]) -> str:
     main = float(terms[0])
     if "lift" in task.weights:
         return f"beat lift {main:.3f}"
-    if task.goal.origin:
-        return f"{math.degrees(-main):.1f}° off the target"
     if task.goal.wave is not None:
         return f"{-main:.3f} m short of the wave"
-    if task.goal.hold:
-        return f"{-main:.3f} m from the goal at most over the last {task.goal.hold:g} s"
-    return f"{-main:.3f} m from the goal"
+    held = f" at most over the last {task.goal.hold:g} s" if task.goal.hold else ""
+    if task.goal.origin:
+        return f"{math.degrees(-main):.1f}° off the target{held}"
+    return f"{-main:.3f} m from the goal{held}"
 
 
 def _number(value: object, name: str) -> float:
