@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import json
 import os
+import signal
 import subprocess
+import time
 from pathlib import Path
 
 import numpy as np
@@ -14,7 +16,7 @@ from PIL import Image
 
 pytest.importorskip("mujoco")
 
-from killed_runs import sinews_command
+from killed_runs import sinews_command, stored_generations
 from sinews.cli import main
 from sinews.control.gp import format_program
 from sinews.experiments.gp.run import KIND as EXPERIMENT
@@ -227,6 +229,31 @@ def test_a_group_of_runs_and_a_run_that_stops_when_adequate(tmp_path: Path) -> N
     assert all(i.config["group"] == [1, 2] and i.config["until"] == 1.0 for i in infos)
     # a lamp that stays upright is within 1 m of an X 0.5 m away: adequate in generation 0
     assert all(i.status == "finished" and i.generations == 1 for i in infos)
+
+
+def test_ctrl_c_in_a_group_leaves_no_run_marked_running(tmp_path: Path) -> None:
+    """The runs of a group that never began are stopped with the one interrupted, said so,
+    and each resumes."""
+    db = str(tmp_path / "r.db")
+    args = ["evolve", "luxo", "--controller", "gp", "--task", "hop", "--population", "8",
+            "--generations", "100000", "--seconds", "0.5", "--runs", "3", "--db", db]  # fmt: skip
+    proc = subprocess.Popen([*sinews_command(), *args], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)  # fmt: skip
+    while stored_generations(Path(db)) < 2 and proc.poll() is None:
+        time.sleep(0.01)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 130 and "Traceback" not in err
+    assert "sinews runs resume 1" in err and "runs 2, 3 of the group did not start" in err
+    with RunStore(db) as store:
+        assert [(i.status, i.generations > 0) for i in store.runs()] == [
+            ("failed", True), ("failed", False), ("failed", False)
+        ]  # fmt: skip
+    resumed = subprocess.run([*sinews_command(), "runs", "resume", "2", "--generations", "1",
+                              "--db", db], capture_output=True, text=True)  # fmt: skip
+    assert resumed.returncode == 0, resumed.stderr
+    with RunStore(db) as store:
+        assert store.run(2).status == "finished" and store.run(2).generations == 1
 
 
 @pytest.mark.parametrize(

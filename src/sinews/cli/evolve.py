@@ -21,6 +21,7 @@ from sinews.errors import SinewsError
 from sinews.evolve import make_evaluator
 from sinews.experiments.kinds import RunKind, run_kinds
 from sinews.experiments.run_config import load_toml
+from sinews.store import RunStore
 
 __all__ = ["register"]
 
@@ -59,12 +60,32 @@ def _evolve(
                 store.update_config(run_id, {**info.config, "group": group})
         executor = evaluation.pop("executor") or kind.default_executor
         with make_evaluator(executor, **evaluation) as evaluator:
-            for run_id in group:
-                typer.echo(f"run {run_id} in {store.path}", err=True)
-                run_with_progress(store, run_id, evaluator=evaluator)
+            try:
+                for run_id in group:
+                    typer.echo(f"run {run_id} in {store.path}", err=True)
+                    run_with_progress(store, run_id, evaluator=evaluator)
+            except BaseException:
+                _stop_unstarted(store, group)
+                raise
         if runs > 1:
             print_group(store, group)
     typer.echo(f"{time.perf_counter() - started:.1f} s", err=True)
+
+
+def _stop_unstarted(store: RunStore, group: list[int]) -> None:
+    """Mark a stopped group's runs that never began as stopped too (not "running"), and say
+    how to run them."""
+    waiting = [
+        run_id
+        for run_id in group
+        if store.run(run_id).status == "running" and store.last_generation(run_id) < 0
+    ]
+    for run_id in waiting:
+        store.set_status(run_id, "failed")
+    if waiting:
+        runs = ", ".join(map(str, waiting))
+        typer.echo(f"runs {runs} of the group did not start; run each with: "
+                   f"sinews runs resume RUN", err=True)  # fmt: skip
 
 
 def _option(name: str, annotation: Any, default: Any = None) -> inspect.Parameter:
