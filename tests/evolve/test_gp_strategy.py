@@ -119,6 +119,14 @@ def test_tweaked_children_keep_their_parents_shape_and_change_a_constant() -> No
     assert 10 <= tweaked <= 20  # 20 tweaks; a parent without constants comes back as is
 
 
+@pytest.mark.parametrize("size", [7, 9])
+def test_shares_that_round_up_together_do_not_overfill_a_generation(size: int) -> None:
+    """0.5 + 0.5 of 7 rounds to 4 + 4: the mutants are cut to fill exactly 7."""
+    gp = _strategy(size=size, crossover_rate=0.5, mutation_rate=0.5)
+    gp.tell(_score(gp.ask()))
+    assert len(gp.ask()) == size
+
+
 def test_a_child_over_the_limit_is_drawn_again_not_copied_from_a_parent() -> None:
     """At depth limit 2, most crossovers of depth-2 trees break it: each is redrawn."""
     gp = _strategy(3, max_depth=2, init_depth=(2, 2), crossover_rate=1.0, max_copies=1.0)

@@ -233,9 +233,11 @@ class GPStrategy(AskTell[list[Program]]):
     def _breed(self) -> tuple[list[Program], IntArray]:
         assert self._population is not None and self._fitness is not None
         old, v, size = self._population, self.variation, self.population_size
-        n_cross = round(v.crossover_rate * (size - v.elites))
-        n_mutate = round(v.mutation_rate * (size - v.elites))
-        n_tweak = min(round(v.tweak_rate * (size - v.elites)), size - v.elites - n_cross - n_mutate)
+        bred = size - v.elites
+        n_cross = round(v.crossover_rate * bred)
+        # each share rounds on its own; one that would overfill the generation is cut
+        n_mutate = min(round(v.mutation_rate * bred), bred - n_cross)
+        n_tweak = min(round(v.tweak_rate * bred), bred - n_cross - n_mutate)
         elites = np.argsort(-self._fitness, kind="stable")[: v.elites]
         children: list[Program] = [old[i] for i in elites]
         parents = [(int(i), -1) for i in elites]
