@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import shlex
+import subprocess
 import tomllib
 from pathlib import Path
 
@@ -10,6 +11,7 @@ import pytest
 
 pytest.importorskip("mujoco")
 
+from killed_runs import sinews_command
 from sinews.cli import main
 from sinews.store import RunStore
 
@@ -41,3 +43,25 @@ def test_a_documented_run_file_makes_a_run(path: Path, tmp_path: Path) -> None:
         options = info.config["strategy"]["options"]
         strategy = tomllib.loads(path.read_text()).get("strategy", {})
         assert options == {k: v for k, v in strategy.items() if k != "name"}
+
+
+@pytest.mark.parametrize(
+    ("table", "message"),
+    [
+        ("tweak_scale = 1e308", "tweak_scale must be in (0, 10]"),
+        ("tweak_scale = nan", "tweak_scale must be in (0, 10]"),
+        ("tweak_rate = 0.5", "must be >= 0 and sum to <= 1"),
+    ],
+)
+def test_bad_tweaks_in_a_run_file_are_one_line_errors(
+    table: str, message: str, tmp_path: Path
+) -> None:
+    """Through the installed ``sinews``: exit 2, one line, and no run made."""
+    config, db = tmp_path / "bad.toml", tmp_path / "runs.db"
+    config.write_text(f'[strategy]\nname = "gp"\n{table}\n')
+    args = ["evolve", "humanoid", "--controller", "gp", "--task", "nose", "--population", "4",
+            "--config", str(config), "--db", str(db)]  # fmt: skip
+    done = subprocess.run([*sinews_command(), *args], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 2 and done.stderr.count("\n") == 1 and message in done.stderr
+    with RunStore(db) as store:
+        assert store.runs() == []
