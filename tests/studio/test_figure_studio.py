@@ -8,6 +8,7 @@ import subprocess
 import time
 import urllib.error
 import urllib.request
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -16,6 +17,7 @@ import pytest
 from figure_page_helpers import GP, SPRINGNET, call, ok, settled, sinews, stored
 from killed_runs import sinews_command
 from sinews.store import RunStore
+from sinews.studio.figure_runs import FigureRuns
 from studio_helpers import StudioServer, decode_pack
 
 
@@ -203,6 +205,17 @@ def test_runs_started_in_the_page_evolve_in_the_background_as_the_cli_would(
     sinews(twin, studio_env, "evolve", "snake", "--population", "5", "--generations", str(after),
            "--seconds", "0.5", "--seed", "5")  # fmt: skip
     assert stored(lamp_db, run) == stored(twin, 1)
+
+
+def test_the_history_stops_at_the_generation_count_read_even_if_more_are_stored_since(
+    lamp_runs: Path,
+) -> None:
+    # another process may store a generation between reading the run and its scores
+    runs = FigureRuns(RunStore(lamp_runs, readonly=True))
+    run = runs.get(1)
+    assert [row["generation"] for row in runs.history(run)] == list(range(run.info.generations))
+    earlier = replace(run, info=replace(run.info, generations=run.info.generations - 1))
+    assert len(runs.history(earlier)) == run.info.generations - 1
 
 
 def test_a_run_the_cli_is_making_is_read_only_in_the_page_until_the_cli_dies(

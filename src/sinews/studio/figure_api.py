@@ -74,7 +74,7 @@ def _run_json(studio: Studio, run: FigureRun) -> dict[str, Any]:
         "fitnessHistory": info.config.get("fitness_history", []),
         "fitnessLabel": fitness_label(info),
         "maxPicks": max_picks(run),
-        "history": studio.figure_runs.history(run.id),
+        "history": studio.figure_runs.history(run),
         "song": studio.figure_songs.to_json(info),
     }
 

@@ -252,13 +252,17 @@ class FigureRuns:
                                 evaluator=SerialEvaluator(), log=log)  # fmt: skip
         return summary.generation
 
-    def history(self, run_id: int) -> list[dict[str, Any]]:
-        """Per scored generation: its number, best and mean fitness (over those not failed)."""
-        table = self.store.scores(run_id)
+    def history(self, run: FigureRun) -> list[dict[str, Any]]:
+        """Per generation of `run` as read: its number, best and mean fitness (over those not
+        failed). Generations another process scored since are left out, so the history always
+        matches the run's generation count."""
+        table = self.store.scores(run.id)
         fitness = np.asarray(table.fitness, dtype=np.float64)
         failed = np.asarray(table.failed, dtype=bool)
         found = []
         for generation in np.unique(table.generation).tolist():
+            if generation >= run.info.generations:
+                break
             rows = (np.asarray(table.generation) == generation) & ~failed & np.isfinite(fitness)
             values = fitness[rows]
             found.append({
