@@ -40,9 +40,12 @@ def test_a_documented_run_file_makes_a_run(path: Path, tmp_path: Path) -> None:
     with RunStore(db) as store:
         (info,) = store.runs()
         assert info.status == "finished"
-        options = info.config["strategy"]["options"]
-        strategy = tomllib.loads(path.read_text()).get("strategy", {})
+        options, fitness = info.config["strategy"]["options"], info.config["fitness"]
+        settings = tomllib.loads(path.read_text())
+        strategy = settings.get("strategy", {})
         assert options == {k: v for k, v in strategy.items() if k != "name"}
+        assert fitness.get("constraints", []) == settings.get("constraints", [])
+        assert fitness.get("tolerance", 0) == settings.get("tolerance", 0)
 
 
 @pytest.mark.parametrize(
