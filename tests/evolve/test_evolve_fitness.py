@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 from pathlib import Path
 
 import numpy as np
@@ -111,47 +110,6 @@ def test_constraints_round_trip_and_must_be_style_terms() -> None:
             FitnessSpec(main="goal", weights={"goal": 1.0, "head": 1.0}, constraints=bad)
     with pytest.raises(FitnessError, match="malformed"):
         FitnessSpec.from_dict({**constrained().to_dict(), "constraints": "head"})
-
-
-def eased(tolerance: float = 0.2) -> FitnessSpec:
-    return dataclasses.replace(constrained(), phase_in=PhaseIn(2, 6), tolerance=tolerance)
-
-
-def test_the_tolerance_falls_linearly_from_the_phase_in_start_to_zero_at_full_weight() -> None:
-    assert [eased().tolerance_at(g) for g in range(8)] == pytest.approx(
-        [0.2, 0.2, 0.2, 0.15, 0.1, 0.05, 0.0, 0.0]
-    )
-    assert constrained().tolerance_at(0) == 0.0
-    instant = dataclasses.replace(eased(), phase_in=PhaseIn(3, 3))
-    assert [instant.tolerance_at(g) for g in range(5)] == [0.0] * 5
-
-
-def test_a_loss_within_the_tolerance_counts_as_none_until_full_weight() -> None:
-    terms = np.array(
-        [
-            [-0.50, 0.0, 0.0],  # clean, far
-            [-0.10, -0.04, -0.02],  # near, loses 0.06
-            [-0.05, -0.2, 0.0],  # nearer, loses 0.2
-        ]
-    )
-    failed = np.zeros(3, dtype=bool)
-    weights = eased().weights_at(4)
-    early = eased().combine(terms, failed, 4)  # tolerates 0.1: the first two are "clean"
-    np.testing.assert_allclose(early[:2], terms[:2] @ np.array(list(weights.values())))
-    assert early[1] > early[0] > early[2]
-    late = eased().combine(terms, failed, 6)  # nothing tolerated: Deb's rule as before
-    np.testing.assert_allclose(late, constrained().combine(terms, failed, 6))
-    assert late[0] > late[1] > late[2]
-
-
-def test_a_tolerance_round_trips_and_must_be_a_finite_number_at_least_zero() -> None:
-    assert FitnessSpec.from_dict(eased().to_dict()) == eased()
-    assert "tolerance" not in constrained().to_dict()  # an old run's config is unchanged
-    for bad in (-0.1, float("inf"), float("nan")):
-        with pytest.raises(FitnessError, match="tolerance must be a number >= 0"):
-            eased(bad)
-    with pytest.raises(FitnessError, match="needs constraints"):
-        FitnessSpec(main="goal", weights={"goal": 1.0, "head": 1.0}, tolerance=0.1)
 
 
 def test_retuning_a_run_keeps_its_constraints(tmp_path: Path) -> None:

@@ -13,10 +13,6 @@ Some style terms may be *constraints* (e.g. the head never on the floor): from
 the phase-in's start on, Deb's feasibility rule (2000) ranks every individual
 that loses nothing on them above every one that does, and those that do by
 how much they lose, so a few centimetres of the goal can never buy a fall.
-With a *tolerance* (the ε-constraint method, Takahama & Sakai 2005) a loss up to
-ε counts as none: ε starts at the tolerance when the phase-in starts and falls
-linearly to 0 at full weight, so a lineage may cross a little infeasible ground
-early (brush a limbo bar on its way under) and must be clean by the end.
 """
 
 from __future__ import annotations
@@ -80,15 +76,12 @@ class FitnessSpec:
         constraints: style terms (penalties, at most 0) that must be 0: from
             ``phase_in.start`` on, an individual below 0 on any of them ranks
             below every individual that is not (see `combine`).
-        tolerance: the constraint loss that counts as none when the phase-in starts
-            (ε, falling linearly to 0 at ``phase_in.full``; `tolerance_at`).
     """
 
     main: str
     weights: Mapping[str, float]
     phase_in: PhaseIn = field(default_factory=PhaseIn)
     constraints: tuple[str, ...] = ()
-    tolerance: float = 0.0
 
     def __post_init__(self) -> None:
         if self.main not in self.weights:
@@ -103,10 +96,6 @@ class FitnessSpec:
                 )
         if len(set(self.constraints)) != len(self.constraints):
             raise FitnessError("constraints name a term twice")
-        if not (math.isfinite(self.tolerance) and self.tolerance >= 0):
-            raise FitnessError(f"tolerance must be a number >= 0, got {self.tolerance}")
-        if self.tolerance and not self.constraints:
-            raise FitnessError("a tolerance needs constraints to tolerate a loss on")
         for name, weight in self.weights.items():
             if not math.isfinite(weight):
                 raise FitnessError(f"weight of {name!r} must be a finite number, got {weight}")
@@ -124,13 +113,6 @@ class FitnessSpec:
             name: self.weights[name] * (1.0 if name == self.main else factor) for name in self.names
         }
 
-    def tolerance_at(self, generation: int) -> float:
-        """ε at ``generation``: the tolerance at ``phase_in.start``, 0 from ``phase_in.full``."""
-        start, full = self.phase_in.start, self.phase_in.full
-        if generation >= full or start == full:
-            return 0.0
-        return self.tolerance * (full - max(generation, start)) / (full - start)
-
     def combine(
         self, terms: npt.NDArray[np.float64], failed: npt.NDArray[np.bool_], generation: int
     ) -> npt.NDArray[np.float64]:
@@ -144,12 +126,11 @@ class FitnessSpec:
         Returns:
             (P,) weighted sums; `WORST_FITNESS` where failed or any term is NaN.
             With constraints, from ``phase_in.start`` on: the sums of those
-            that lose nothing on them (at most `tolerance_at` ``generation``);
-            below the least of these, each other one's total loss on them
-            (Deb's rule: a tournament then prefers the one that keeps them, or
-            of two that do not, the one that loses less). Computed over the
-            rows given: one generation to breed it, a whole run to find its
-            best (a clean one if it has any).
+            that lose nothing on them; below the least of these, each other
+            one's total loss on them (Deb's rule: a tournament then prefers
+            the one that keeps them, or of two that do not, the one that loses
+            less). Computed over the rows given: one generation to breed it, a
+            whole run to find its best (a clean one if it has any).
         """
         weights = np.array(list(self.weights_at(generation).values()))
         with np.errstate(invalid="ignore", over="ignore"):
@@ -160,13 +141,12 @@ class FitnessSpec:
             return total
         columns = [self.names.index(name) for name in self.constraints]
         loss = -np.minimum(terms[:, columns], 0.0).sum(axis=1)
-        kept = ~bad & (loss <= self.tolerance_at(generation))
+        kept = ~bad & (loss == 0)
         floor = total[kept].min() if kept.any() else 0.0
         return np.where(bad | kept, total, floor - loss)
 
     def to_dict(self) -> dict[str, Any]:
-        """A JSON/TOML-safe description (see `from_dict`); ``constraints`` and ``tolerance``
-        only if set."""
+        """A JSON/TOML-safe description (see `from_dict`); ``constraints`` only if any."""
         doc: dict[str, Any] = {
             "main": self.main,
             "weights": dict(self.weights),
@@ -174,8 +154,6 @@ class FitnessSpec:
         }
         if self.constraints:
             doc["constraints"] = list(self.constraints)
-        if self.tolerance:
-            doc["tolerance"] = self.tolerance
         return doc
 
     @classmethod
@@ -188,7 +166,6 @@ class FitnessSpec:
                 weights={str(k): float(v) for k, v in doc["weights"].items()},
                 phase_in=PhaseIn(start=int(phase.get("start", 0)), full=int(phase.get("full", 0))),
                 constraints=_names(doc.get("constraints", [])),
-                tolerance=float(doc.get("tolerance", 0.0)),
             )
         except (KeyError, TypeError, ValueError, AttributeError):
             raise FitnessError("malformed fitness description") from None

@@ -11,7 +11,6 @@ A run file looks like this (every key optional)::
     weights = { liveliness = 0.2 }
     phase_in = { start = 5, full = 15 }
     constraints = ["head"]        # style terms that must be 0 (feasible first)
-    tolerance = 0.2               # constraint loss let pass at the phase-in's start
 
     [strategy]
     name = "ga"
@@ -35,7 +34,7 @@ from sinews.limits import MAX_GENERATIONS, MAX_POPULATION
 __all__ = ["ConfigError", "EvolutionConfig", "build_config", "fitness_spec", "load_toml"]
 
 _COMMON = ("population", "generations", "seed", "fitness", "weights", "phase_in",
-           "constraints", "tolerance", "strategy")  # fmt: skip
+           "constraints", "strategy")  # fmt: skip
 
 
 class ConfigError(SinewsError):
@@ -126,7 +125,6 @@ def fitness_spec(
     phase_in: PhaseIn,
     defaults: Mapping[str, float],
     constraints: Sequence[str] = (),
-    tolerance: float = 0.0,
 ) -> FitnessSpec:
     """The fitness spec of a list of terms, the first being the main goal.
 
@@ -136,11 +134,10 @@ def fitness_spec(
         phase_in: the style phase-in.
         defaults: every known term and its default weight.
         constraints: style terms in ``names`` that must be 0 (`FitnessSpec`).
-        tolerance: the loss on them let pass at the phase-in's start (`FitnessSpec`).
 
     Raises:
-        FitnessError: an unknown or repeated term, a weight for a term not used, a
-            constraint that is not one of the style terms, or a bad tolerance.
+        FitnessError: an unknown or repeated term, a weight for a term not used, or
+            a constraint that is not one of the style terms.
     """
     if not names:
         raise FitnessError("--fitness needs at least one term")
@@ -159,7 +156,6 @@ def fitness_spec(
         weights={n: float(weights.get(n, defaults[n])) for n in names},
         phase_in=phase_in,
         constraints=tuple(constraints),
-        tolerance=tolerance,
     )
 
 
@@ -204,7 +200,6 @@ def build_config(
         phase_in=_phase_in(merged["phase_in"]),
         defaults=term_defaults,
         constraints=_constraints(merged.get("constraints") or []),
-        tolerance=_tolerance(merged.get("tolerance", 0.0)),
     )
     try:
         config = EvolutionConfig(
@@ -232,12 +227,6 @@ def _constraints(value: object) -> list[str]:
     if isinstance(value, list) and all(isinstance(n, str) for n in value):
         return value
     raise ConfigError("constraints must be a list of term names")
-
-
-def _tolerance(value: object) -> float:
-    if isinstance(value, int | float) and not isinstance(value, bool):
-        return float(value)
-    raise ConfigError(f"tolerance must be a number, got {value!r}")
 
 
 def _weights(value: object) -> dict[str, float]:
