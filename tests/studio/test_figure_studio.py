@@ -211,11 +211,13 @@ def test_the_history_stops_at_the_generation_count_read_even_if_more_are_stored_
     lamp_runs: Path,
 ) -> None:
     # another process may store a generation between reading the run and its scores
-    runs = FigureRuns(RunStore(lamp_runs, readonly=True))
-    run = runs.get(1)
-    assert [row["generation"] for row in runs.history(run)] == list(range(run.info.generations))
-    earlier = replace(run, info=replace(run.info, generations=run.info.generations - 1))
-    assert len(runs.history(earlier)) == run.info.generations - 1
+    with RunStore(lamp_runs, readonly=True) as store:
+        runs = FigureRuns(store)
+        run = runs.get(1)
+        shown = [row["generation"] for row in runs.history(run)]
+        assert shown == list(range(run.info.generations))
+        earlier = replace(run, info=replace(run.info, generations=run.info.generations - 1))
+        assert len(runs.history(earlier)) == run.info.generations - 1
 
 
 def test_a_run_the_cli_is_making_is_read_only_in_the_page_until_the_cli_dies(

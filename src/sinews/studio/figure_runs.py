@@ -258,13 +258,11 @@ class FigureRuns:
         matches the run's generation count."""
         table = self.store.scores(run.id)
         fitness = np.asarray(table.fitness, dtype=np.float64)
-        failed = np.asarray(table.failed, dtype=bool)
+        generations = np.asarray(table.generation)
+        rated = ~np.asarray(table.failed, dtype=bool) & np.isfinite(fitness)
         found = []
-        for generation in np.unique(table.generation).tolist():
-            if generation >= run.info.generations:
-                break
-            rows = (np.asarray(table.generation) == generation) & ~failed & np.isfinite(fitness)
-            values = fitness[rows]
+        for generation in np.unique(generations[generations < run.info.generations]).tolist():
+            values = fitness[(generations == generation) & rated]
             found.append({
                 "generation": int(generation),
                 "best": float(values.max()) if len(values) else None,
