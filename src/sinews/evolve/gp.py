@@ -78,6 +78,18 @@ IntArray = npt.NDArray[np.int64]
 Selection = Literal["tournament", "proportionate"]
 
 
+_WHOLE = (  # GPVariation's whole-number and real fields
+    "tournament_size",
+    "elites",
+    "max_depth",
+    "max_size",
+    "mutation_depth",
+    "layers",
+    "age_gap",
+)
+_REAL = ("crossover_rate", "mutation_rate", "tweak_rate", "tweak_scale", "max_copies")
+
+
 @dataclass(frozen=True)
 class GPVariation:
     """How a GP generation is bred.
@@ -121,7 +133,19 @@ class GPVariation:
     age_gap: int = 5
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "init_depth", tuple(int(d) for d in self.init_depth))
+        for name in _WHOLE:
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, int):
+                raise StrategyError(f"{name} must be a whole number, got {value!r}")
+        for name in _REAL:
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, float)):
+                raise StrategyError(f"{name} must be a number, got {value!r}")
+        try:
+            low, high = (int(d) for d in self.init_depth)
+        except (TypeError, ValueError):
+            raise StrategyError(f"init_depth must be (min, max), got {self.init_depth!r}") from None
+        object.__setattr__(self, "init_depth", (low, high))
         rates = (self.crossover_rate, self.mutation_rate, self.tweak_rate)
         if not (min(rates) >= 0 and sum(rates) <= 1):
             raise StrategyError(
@@ -139,7 +163,6 @@ class GPVariation:
             raise StrategyError("layers must be 1 to 10 and age_gap 1 to 1000")
         if not 0 < self.max_copies <= 1:
             raise StrategyError(f"max_copies must be in (0, 1], got {self.max_copies}")
-        low, high = self.init_depth
         if not 0 <= low <= high <= self.max_depth:
             raise StrategyError("init_depth must be (min, max) with 0 <= min <= max <= max_depth")
         try:
