@@ -7,6 +7,7 @@ style points); the built-in tasks are made in `sinews.figures.tasks`, and
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -118,8 +119,9 @@ class Goal:
     Attributes:
         tracked: sensor columns of the point, one per axis (e.g. ``("root_x",)``).
         target: per axis a fixed coordinate, m, or a sensor column (a moving target).
-        names: the goal-relative terminal of each axis, target − tracked; or none
-            (e.g. when the task offers the goal in the heading frame among its sensors).
+        names: the goal-relative terminals target − tracked of the first axes (all, some
+            or none: e.g. none when the task offers the goal in the heading frame among its
+            sensors; a lamp's X has one for x and none for the base's height).
         radius: the point has arrived within this distance, m (rad for a direction).
         origin: sensor columns of the origin of a direction goal, one per axis, or none.
         wave: a wave goal's rate, amplitude and window, or None.
@@ -136,9 +138,9 @@ class Goal:
 
     def __post_init__(self) -> None:
         if not (len(self.tracked) == len(self.target) >= 1):
-            raise FigureError("a goal needs one tracked column, target and name per axis")
-        if len(self.names) not in (0, len(self.tracked)):
-            raise FigureError("a goal needs one tracked column, target and name per axis")
+            raise FigureError("a goal needs one tracked column and target per axis")
+        if len(self.names) > len(self.tracked):
+            raise FigureError("a goal has at most one terminal name per axis")
         if len(self.origin) not in (0, len(self.tracked)):
             raise FigureError("a direction goal needs one origin column per axis")
         if self.wave is not None and (self.origin or len(self.tracked) != 2):
@@ -232,11 +234,8 @@ class Task:
         for m in range(n_music):
             weights[n_sensors + m, len(self.terminals) - n_music + m] = 1.0
         first = len(self.sensors)
-        if not self.goal.names:
-            return weights, offset
-        for axis, (tracked, target) in enumerate(
-            zip(self.goal.tracked, self.goal.target, strict=True)
-        ):
+        named = zip(self.goal.tracked, self.goal.target, strict=True)  # the first axes
+        for axis, (tracked, target) in enumerate(itertools.islice(named, len(self.goal.names))):
             weights[index(tracked), first + axis] -= 1.0
             if isinstance(target, str):
                 weights[index(target), first + axis] += 1.0

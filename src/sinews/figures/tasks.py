@@ -61,6 +61,7 @@ __all__ = [
     "luxo_hop",
     "luxo_limbo",
     "make_task",
+    "on_the_x",
     "snake_dance",
     "standing_height",
 ]
@@ -81,14 +82,22 @@ LUXO_SENSORS = (
 """The paper's lamp terminals: angles, height, velocity, base force, time (and ``gx``)."""
 
 
+def on_the_x(target: float) -> Goal:
+    """The lamp's base on the floor at x = ``target``: the distance counts the base centre's
+    height above its rest too, so a lamp in mid-hop over the X at the end is not on it
+    (until 2026-11-27 it counted x alone). Only x has a terminal, ``gx``."""
+    return Goal(tracked=("root_x", "root_z"), target=(float(target), 0.0), names=("gx",))
+
+
 def luxo_hop(target: float = 1.0, *, seconds: float = 5.0) -> Task:
-    """Hop to the X: the lamp's base must end at ``target`` m along x (0.5–2 m ahead or behind)."""
+    """Hop to the X: the lamp's base must end on the floor at ``target`` m along x (0.5–2 m
+    ahead or behind; `on_the_x`)."""
     if not 0.5 <= abs(target) <= 2.0:
         raise FigureError(f"luxo-hop: the target must be 0.5 to 2 m ahead or behind, got {target}")
     return Task(
         name="luxo-hop",
         figure=luxo(),
-        goal=Goal(tracked=("root_x",), target=(float(target),), names=("gx",)),
+        goal=on_the_x(target),
         joints=("base_hinge", "elbow", "neck"),
         sensors=LUXO_SENSORS,
         weights={"distance": 1.0, **STYLE},
@@ -195,7 +204,7 @@ def luxo_limbo(
     return Task(
         name="luxo-limbo",
         figure=figure,
-        goal=Goal(tracked=("root_x",), target=(float(target),), names=("gx",)),
+        goal=on_the_x(target),
         joints=("base_hinge", "elbow", "neck"),
         sensors=LUXO_SENSORS,
         weights={"distance": 1.0, **STYLE, "touch": 5.0},

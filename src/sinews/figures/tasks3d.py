@@ -26,7 +26,7 @@ from typing import Any
 
 from sinews.figures.figure import Figure, FigureError
 from sinews.figures.humanoid3d import humanoid3d
-from sinews.figures.luxo3d import luxo3d
+from sinews.figures.luxo3d import LuxoShape3D, luxo3d
 from sinews.figures.mjcf import fmt
 from sinews.figures.task import STYLE, TOUCH_HOLD, Goal, Task, Wave, dance_task, standing_height
 
@@ -91,6 +91,11 @@ def _check_floor_target(name: str, target: Sequence[float]) -> tuple[float, floa
     return x, y
 
 
+RESTING = LuxoShape3D().base_half_height
+"""The base centre's height when the lamp stands: the X is there, on the floor, so a lamp in
+mid-hop above it at the end is not on it (until 2026-11-27 the goal counted x and y alone)."""
+
+
 def _lamp_task(
     name: str,
     figure: Figure,
@@ -102,7 +107,7 @@ def _lamp_task(
     return Task(
         name=name,
         figure=figure,
-        goal=Goal(tracked=("root_x", "root_y"), target=target, names=()),
+        goal=Goal(tracked=("root_x", "root_y", "root_z"), target=(*target, RESTING), names=()),
         joints=LUXO3D_JOINTS,
         sensors=LUXO3D_SENSORS,
         weights=weights,
@@ -115,8 +120,8 @@ def luxo3d_hop(target: Sequence[float] = (1.0, 0.5), *, seconds: float = 5.0) ->
     """Hop to the X at (x, y) on the floor, 0.3–2 m from the start in any direction.
 
     The lamp starts facing +x, so a target off the axis means turning as well
-    as hopping. The main goal is the base centre's distance from the X at the
-    end; style as the planar lamp's (`STYLE`).
+    as hopping. The main goal is the base centre's distance from the X on the
+    floor at the end (`RESTING`); style as the planar lamp's (`STYLE`).
     """
     x, y = _check_floor_target("luxo3d-hop", target)
     lamp = luxo3d()
