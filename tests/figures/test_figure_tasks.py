@@ -53,7 +53,8 @@ def test_a_lamp_in_mid_hop_over_the_x_is_not_on_it(hop: Task) -> None:
     """The X is on the floor: at the end one lamp stands on it, one is 13 cm above it."""
     meter = TaskMeter(hop, 2)
     for k in range(11):
-        sensors = sensors_for(hop, time=[k / 10] * 2, root_x=[1.5, 1.5], root_z=[0.0, 0.13 * k / 10])
+        height = [0.0, 0.13 * k / 10]
+        sensors = sensors_for(hop, time=[k / 10] * 2, root_x=[1.5, 1.5], root_z=height)
         meter(k / 10, sensors, np.zeros((2, 3)))
     distance = meter.terms()[:, list(hop.weights).index("distance")]
     np.testing.assert_allclose(distance, [0.0, -0.13], atol=1e-12)

@@ -310,7 +310,7 @@ class GPStrategy(AskTell[list[Program]]):
         assert self._population is not None and self._fitness is not None
         if self.variation.layers == 1 or len(self._picks):
             # a person's picks steer the whole generation, whatever its layers
-            children, parents = self._breed_block(None, self.population_size, self._picks)
+            children, parents = self._breed_block(None, self.population_size)
         else:
             children, parents = self._breed_layers()
         lineage = np.array(parents, dtype=np.int64)
@@ -336,16 +336,16 @@ class GPStrategy(AskTell[list[Program]]):
                 children += self._random(count)
                 parents += [(-1, -1)] * count
             else:
-                block, block_parents = self._breed_block(pool, count, self._picks)
+                block, block_parents = self._breed_block(pool, count)
                 children += block
                 parents += block_parents
         return children, parents
 
     def _breed_block(
-        self, pool: IntArray | None, size: int, picks: IntArray
+        self, pool: IntArray | None, size: int
     ) -> tuple[list[Program], list[tuple[int, int]]]:
-        """``size`` children of the parents in ``pool`` (None: everyone) by the variation's
-        shares, and each one's parents."""
+        """``size`` children of the parents in ``pool`` (None: everyone, and the picks if
+        any) by the variation's shares, and each one's parents."""
         assert self._population is not None and self._fitness is not None
         old, v = self._population, self.variation
         bred = size - v.elites
@@ -373,7 +373,7 @@ class GPStrategy(AskTell[list[Program]]):
         for i in self._select(n_tweak, pool).tolist():
             children.append(tweak_constants(old[i], self.pset, self.rng, scale=v.tweak_scale))
             parents.append((i, -1))
-        for i in picks.tolist()[: max(0, size - len(children))]:
+        for i in self._picks.tolist()[: max(0, size - len(children))]:
             children.append(old[i])
             parents.append((i, -1))
         for i in self._select(size - len(children), pool).tolist():
