@@ -115,8 +115,8 @@ def draw_scene_front(
 def scene_of(task: Task) -> TaskScene:
     """The marks a task's picture needs, read from its goal and its touch bodies.
 
-    A goal along the floor (``root_x``) is an X there; a goal at a fixed point
-    is that point; a goal that is a site (the nose) marks the site. The site
+    A goal of the root along the floor (``root_x``, and its height) is an X there; a
+    goal at a fixed point is that point; a goal that is a site (the nose) marks the site. The site
     that must reach it is marked too, and every touch body (a limbo bar)
     gets a post from the floor.
     """
@@ -127,14 +127,16 @@ def scene_of(task: Task) -> TaskScene:
         return name if name in figure.sites else None
 
     fixed = [t for t in goal.target if not isinstance(t, str)]
+    # the root to an X on the floor (x, and its height: `sinews.figures.tasks.on_the_x`)
+    on_floor = goal.tracked in (("root_x",), ("root_x", "root_z")) and bool(fixed)
     model = figure.model()
     posts = tuple(
         (float(model.body(b).pos[0]), float(model.body(b).pos[2])) for b in figure.touch_bodies
     )
     return TaskScene(
-        cross=float(fixed[0]) if goal.tracked == ("root_x",) and fixed else None,
+        cross=float(fixed[0]) if on_floor else None,
         posts=posts,
-        target=(float(fixed[0]), float(fixed[1])) if len(fixed) == 2 else None,
+        target=(float(fixed[0]), float(fixed[1])) if len(fixed) == 2 and not on_floor else None,
         target_site=site(str(goal.target[0])) if not fixed else None,
         tracked_site=site(goal.tracked[0]),
     )
