@@ -202,10 +202,16 @@ def test_a_checkpoint_resumes_bit_for_bit(told: bool) -> None:
     for strategy in (gp, restored):
         if not told:
             strategy.tell(_score(programs))
-    for _ in range(2):
+    _breed_alike(gp, restored, 2)
+
+
+def _breed_alike(gp: GPStrategy, restored: GPStrategy, generations: int) -> None:
+    """Both breed the same ``generations`` (programs, parents, ages) and end in one state."""
+    for _ in range(generations):
         a, b = gp.ask(), restored.ask()
         assert a == b
         np.testing.assert_array_equal(gp.parents, restored.parents)
+        np.testing.assert_array_equal(gp.ages, restored.ages)
         gp.tell(_score(a))
         restored.tell(_score(b))
     assert gp.to_bytes() == restored.to_bytes()
@@ -306,13 +312,7 @@ def test_an_age_layered_checkpoint_resumes_bit_for_bit() -> None:
         gp.tell(_score(gp.ask()))
     restored = GPStrategy.from_bytes(gp.to_bytes())
     np.testing.assert_array_equal(restored.ages, gp.ages)
-    for _ in range(3):
-        a, b = gp.ask(), restored.ask()
-        assert a == b
-        np.testing.assert_array_equal(gp.ages, restored.ages)
-        gp.tell(_score(a))
-        restored.tell(_score(b))
-    assert gp.to_bytes() == restored.to_bytes()
+    _breed_alike(gp, restored, 3)
     state = json.loads(gp.to_bytes())
     for bad in ([1, 2], [-1] * 24, ["x"] * 24):
         with pytest.raises(StrategyError):
