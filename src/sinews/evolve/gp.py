@@ -78,18 +78,6 @@ IntArray = npt.NDArray[np.int64]
 Selection = Literal["tournament", "proportionate"]
 
 
-_WHOLE = (  # GPVariation's whole-number and real fields
-    "tournament_size",
-    "elites",
-    "max_depth",
-    "max_size",
-    "mutation_depth",
-    "layers",
-    "age_gap",
-)
-_REAL = ("crossover_rate", "mutation_rate", "tweak_rate", "tweak_scale", "max_copies")
-
-
 @dataclass(frozen=True)
 class GPVariation:
     """How a GP generation is bred.
@@ -133,14 +121,13 @@ class GPVariation:
     age_gap: int = 5
 
     def __post_init__(self) -> None:
-        for name in _WHOLE:
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, int):
-                raise StrategyError(f"{name} must be a whole number, got {value!r}")
-        for name in _REAL:
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, (int, float)):
-                raise StrategyError(f"{name} must be a number, got {value!r}")
+        for option in dataclasses.fields(self):  # a run file's values, as their types say
+            value = getattr(self, option.name)
+            if option.type == "int" and (isinstance(value, bool) or not isinstance(value, int)):
+                raise StrategyError(f"{option.name} must be a whole number, got {value!r}")
+            number = isinstance(value, (int, float)) and not isinstance(value, bool)
+            if option.type == "float" and not number:
+                raise StrategyError(f"{option.name} must be a number, got {value!r}")
         try:
             low, high = (int(d) for d in self.init_depth)
         except (TypeError, ValueError):
@@ -270,7 +257,6 @@ class GPStrategy(AskTell[list[Program]]):
         self._record_tell(fitness=fitness, picks=picks)
 
     def _first(self) -> list[Program]:
-        self._ages = np.zeros(self.population_size, dtype=np.int64)
         return self._random(self.population_size)
 
     def _random(self, count: int) -> list[Program]:

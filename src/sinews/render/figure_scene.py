@@ -115,10 +115,10 @@ def draw_scene_front(
 def scene_of(task: Task) -> TaskScene:
     """The marks a task's picture needs, read from its goal and its touch bodies.
 
-    A goal of the root along the floor (``root_x``, and its height) is an X there; a
-    goal at a fixed point is that point; a goal that is a site (the nose) marks the site. The site
-    that must reach it is marked too, and every touch body (a limbo bar)
-    gets a post from the floor.
+    A goal of the root along the floor (``root_x``, and its height) is an X there;
+    a goal at a fixed point is that point; a goal that is a site (the nose) marks
+    the site. The site that must reach it is marked too, and every touch body (a
+    limbo bar) gets a post from the floor.
     """
     goal, figure = task.goal, task.figure
 
