@@ -202,16 +202,10 @@ def test_a_checkpoint_resumes_bit_for_bit(told: bool) -> None:
     for strategy in (gp, restored):
         if not told:
             strategy.tell(_score(programs))
-    _breed_alike(gp, restored, 2)
-
-
-def _breed_alike(gp: GPStrategy, restored: GPStrategy, generations: int) -> None:
-    """Both breed the same ``generations`` (programs, parents, ages) and end in one state."""
-    for _ in range(generations):
+    for _ in range(2):
         a, b = gp.ask(), restored.ask()
         assert a == b
         np.testing.assert_array_equal(gp.parents, restored.parents)
-        np.testing.assert_array_equal(gp.ages, restored.ages)
         gp.tell(_score(a))
         restored.tell(_score(b))
     assert gp.to_bytes() == restored.to_bytes()
@@ -267,64 +261,3 @@ def test_without_picks_a_checkpoint_restores_as_before() -> None:
     restored = GPStrategy.from_bytes(json.dumps(state).encode())
     assert restored.ask() == gp.ask()
     np.testing.assert_array_equal(restored.parents, gp.parents)
-
-
-@pytest.mark.parametrize("options", [{"layers": 0}, {"layers": 11}, {"age_gap": 0},
-                                     {"layers": 4, "elites": 5}])  # fmt: skip
-def test_bad_age_layer_options_are_refused(options: dict[str, object]) -> None:
-    with pytest.raises(StrategyError):
-        _strategy(0, 20, **options)
-    with pytest.raises(StrategyError, match="at least 8"):
-        _strategy(0, 7, layers=4)
-
-
-@pytest.mark.parametrize("seed", [1, 2])
-def test_age_layers_breed_from_themselves_and_below_from_parents_young_enough(seed: int) -> None:
-    gp = _strategy(seed, size=40, layers=4, age_gap=2, tweak_rate=0.05, crossover_rate=0.85,
-                   elites=1, max_copies=1.0)  # fmt: skip
-    layers = gp.layer_slices()
-    assert [(s.start, s.stop) for s in layers] == [(0, 10), (10, 20), (20, 30), (30, 40)]
-    assert [gp.variation.age_limit(k) for k in range(4)] == [2, 4, 8, np.inf]
-    programs = gp.ask()
-    assert (gp.ages == 0).all()
-    for generation in range(1, 12):
-        ages = np.array(gp.ages)
-        gp.tell(_score(programs))
-        programs = gp.ask()
-        parents = np.asarray(gp.parents)
-        for layer, members in enumerate(layers):
-            mine = parents[members]
-            if layer == 0 and generation % 2 == 0:  # drawn afresh every age_gap generations
-                assert (mine == -1).all() and (gp.ages[members] == 0).all()
-                continue
-            used = mine[mine >= 0]
-            assert len(used) > 0
-            assert (used >= layers[max(0, layer - 1)].start).all() and (used < members.stop).all()
-            assert (ages[used] < gp.variation.age_limit(layer)).all()
-            oldest = np.where(mine >= 0, ages[np.maximum(mine, 0)], -1).max(axis=1)
-            np.testing.assert_array_equal(gp.ages[members], oldest + 1)
-    assert gp.ages.max() > 8  # the top layer keeps its old lines
-
-
-def test_an_age_layered_checkpoint_resumes_bit_for_bit() -> None:
-    gp = _strategy(6, size=24, layers=3, age_gap=2)
-    for _ in range(3):
-        gp.tell(_score(gp.ask()))
-    restored = GPStrategy.from_bytes(gp.to_bytes())
-    np.testing.assert_array_equal(restored.ages, gp.ages)
-    _breed_alike(gp, restored, 3)
-    state = json.loads(gp.to_bytes())
-    for bad in ([1, 2], [-1] * 24, ["x"] * 24):
-        with pytest.raises(StrategyError):
-            GPStrategy.from_bytes(json.dumps({**state, "ages": bad}).encode())
-    del state["ages"]  # a checkpoint from before the layers: every age 0
-    assert (GPStrategy.from_bytes(json.dumps(state).encode()).ages == 0).all()
-
-
-def test_picks_steer_an_age_layered_generation_as_one() -> None:
-    gp = _strategy(seed=3, layers=2, age_gap=1)
-    gp.tell(_score(gp.ask()), picks=[3, 17])
-    gp.ask()
-    parents = np.asarray(gp.parents)
-    assert set(parents[parents[:, 1] >= 0].ravel().tolist()) == {3, 17}  # no fresh first layer
-    assert (gp.ages == 1).all()

@@ -28,21 +28,11 @@ in docs/gp.md): a child over the `Limits` is drawn again at other points, not
 replaced by a copy of its parent (`within_limits`); and no program may stand
 more than ``max_copies`` (a share of P) times in a generation: an extra copy
 is mutated instead.
-
-Optionally (``layers`` > 1, not the paper's) the population is age-layered
-(ALPS, Hornby 2006): a program's age is the generations its oldest line has
-been bred (random newcomers 0; a child one more than its older parent); the
-population is split into ``layers`` blocks of index, each bred from itself and
-the layer below, taking only parents young enough for it (`age_limit`); every
-``age_gap`` generations the first layer is drawn afresh at random, so new
-lines keep entering without having to beat the old ones at once.
 """
 
 from __future__ import annotations
 
 import dataclasses
-import itertools
-import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, Literal, Self
@@ -99,9 +89,6 @@ class GPVariation:
         mutation_depth: depth limit of a mutation's new subtree.
         max_copies: the most times one program may stand in a generation, as
             a share of the population (at least once); 1.0 turns the guard off.
-        layers: age layers (1: none, the paper's single population).
-        age_gap: generations between fresh first layers, and the unit of the
-            layers' age limits (`age_limit`).
     """
 
     crossover_rate: float = 0.9
@@ -117,8 +104,6 @@ class GPVariation:
     init_depth: tuple[int, int] = (2, 6)
     mutation_depth: int = 4
     max_copies: float = 0.05
-    layers: int = 1
-    age_gap: int = 5
 
     def __post_init__(self) -> None:
         for option in dataclasses.fields(self):  # a run file's values, as their types say
@@ -146,8 +131,6 @@ class GPVariation:
             )
         if self.tournament_size < 1 or self.elites < 0 or self.mutation_depth < 0:
             raise StrategyError("tournament_size must be >= 1, elites and mutation_depth >= 0")
-        if not (1 <= self.layers <= 10 and 1 <= self.age_gap <= 1000):
-            raise StrategyError("layers must be 1 to 10 and age_gap 1 to 1000")
         if not 0 < self.max_copies <= 1:
             raise StrategyError(f"max_copies must be in (0, 1], got {self.max_copies}")
         if not 0 <= low <= high <= self.max_depth:
@@ -161,13 +144,6 @@ class GPVariation:
     def limits(self) -> Limits:
         """The bloat limits children must meet."""
         return Limits(max_depth=self.max_depth, max_size=self.max_size)
-
-    def age_limit(self, layer: int) -> float:
-        """The age below which a program may parent layer ``layer``'s children: ``age_gap``
-        times 1, 2, 4, 9, 16, … (Hornby's polynomial scheme); unlimited for the top layer."""
-        if layer >= self.layers - 1:
-            return math.inf
-        return self.age_gap * max(layer * layer, layer + 1)
 
 
 def tournament_select(
@@ -230,14 +206,8 @@ class GPStrategy(AskTell[list[Program]]):
         self.pset = pset
         self.n_trees = int(n_trees)
         self.variation = variation or GPVariation()
-        smallest = min(layer.stop - layer.start for layer in self.layer_slices())
-        if smallest < 2:
-            raise StrategyError(f"{self.variation.layers} layers need a population of at least "
-                                f"{2 * self.variation.layers}, got {population_size}")  # fmt: skip
-        if self.variation.elites >= smallest:
-            what = "population size" if self.variation.layers == 1 else "smallest layer's size"
-            raise StrategyError(f"elites must be below the {what} {smallest}")
-        self._ages = np.zeros(self.population_size, dtype=np.int64)
+        if self.variation.elites >= self.population_size:
+            raise StrategyError(f"elites must be below the population size {population_size}")
 
     @property
     def population(self) -> tuple[Program, ...]:
@@ -257,95 +227,32 @@ class GPStrategy(AskTell[list[Program]]):
         self._record_tell(fitness=fitness, picks=picks)
 
     def _first(self) -> list[Program]:
-        return self._random(self.population_size)
-
-    def _random(self, count: int) -> list[Program]:
-        """``count`` ramped half-and-half programs within the limits."""
         low, high = self.variation.init_depth
         return ramped_half_and_half(
-            self.pset, self.rng, n_programs=count, n_trees=self.n_trees,
+            self.pset, self.rng, n_programs=self.population_size, n_trees=self.n_trees,
             min_depth=low, max_depth=high, max_size=self.variation.max_size,
         )  # fmt: skip
 
-    @property
-    def ages(self) -> IntArray:
-        """(P,) the age of each program of the last population (see the module's ALPS)."""
-        self._asked()
-        view = self._ages.view()
-        view.flags.writeable = False
-        return view
-
-    def layer_slices(self) -> list[slice]:
-        """The population's age layers as slices of index, youngest first (one if unlayered)."""
-        size, layers = self.population_size, self.variation.layers
-        bounds = [round(k * size / layers) for k in range(layers + 1)]
-        return [slice(a, b) for a, b in itertools.pairwise(bounds)]
-
-    def _select(self, count: int, pool: IntArray | None = None) -> IntArray:
-        """``count`` parents chosen by fitness among ``pool`` (indices; default everyone)."""
+    def _select(self, count: int) -> IntArray:
         assert self._fitness is not None
         v = self.variation
-        fitness = self._fitness if pool is None else self._fitness[pool]
         if v.selection == "tournament":
-            chosen = tournament_select(fitness, count, size=v.tournament_size, rng=self.rng)
-        else:
-            chosen = proportionate(fitness, count, rng=self.rng)
-        return chosen if pool is None else pool[chosen]
+            return tournament_select(self._fitness, count, size=v.tournament_size, rng=self.rng)
+        return proportionate(self._fitness, count, rng=self.rng)
 
     def _breed(self) -> tuple[list[Program], IntArray]:
         assert self._population is not None and self._fitness is not None
-        if self.variation.layers == 1 or len(self._picks):
-            # a person's picks steer the whole generation, whatever its layers
-            children, parents = self._breed_block(None, self.population_size)
-        else:
-            children, parents = self._breed_layers()
-        lineage = np.array(parents, dtype=np.int64)
-        parent_ages = np.where(lineage >= 0, self._ages[np.maximum(lineage, 0)], -1)
-        self._ages = parent_ages.max(axis=1) + 1
-        return self._diverse(children), lineage
-
-    def _breed_layers(self) -> tuple[list[Program], list[tuple[int, int]]]:
-        """Each layer bred from itself and the layer below, from parents young enough for it;
-        the first layer drawn afresh every ``age_gap`` generations (or when no parent is
-        young enough)."""
-        v, ages = self.variation, self._ages
-        refresh = (self._generation + 1) % v.age_gap == 0
-        layers = self.layer_slices()
-        children: list[Program] = []
-        parents: list[tuple[int, int]] = []
-        for layer, members in enumerate(layers):
-            start = layers[max(0, layer - 1)].start
-            pool = np.arange(start, members.stop, dtype=np.int64)
-            pool = pool[ages[pool] < v.age_limit(layer)]
-            count = members.stop - members.start
-            if (layer == 0 and refresh) or len(pool) == 0:
-                children += self._random(count)
-                parents += [(-1, -1)] * count
-            else:
-                block, block_parents = self._breed_block(pool, count)
-                children += block
-                parents += block_parents
-        return children, parents
-
-    def _breed_block(
-        self, pool: IntArray | None, size: int
-    ) -> tuple[list[Program], list[tuple[int, int]]]:
-        """``size`` children of the parents in ``pool`` (None: everyone, and the picks if
-        any) by the variation's shares, and each one's parents."""
-        assert self._population is not None and self._fitness is not None
-        old, v = self._population, self.variation
+        old, v, size = self._population, self.variation, self.population_size
         bred = size - v.elites
         n_cross = round(v.crossover_rate * bred)
         # each share rounds on its own; one that would overfill the generation is cut
         n_mutate = min(round(v.mutation_rate * bred), bred - n_cross)
         n_tweak = min(round(v.tweak_rate * bred), bred - n_cross - n_mutate)
-        candidates = np.arange(len(old)) if pool is None else pool
-        ranked = np.argsort(-self._fitness[candidates], kind="stable")[: v.elites]
-        elites = candidates[ranked]
+        elites = np.argsort(-self._fitness, kind="stable")[: v.elites]
         children: list[Program] = [old[i] for i in elites]
         parents = [(int(i), -1) for i in elites]
         while len(children) < v.elites + n_cross:
-            i, j = self._mates(pool)
+            i, j = self._mates()
             pair = crossover(old[i], old[j], self.rng, any_slot=v.any_slot)
             for child, (first, second) in zip(pair, ((i, j), (j, i)), strict=True):
                 if len(children) < v.elites + n_cross:
@@ -353,29 +260,29 @@ class GPStrategy(AskTell[list[Program]]):
                         child = self._cross_within_limits(old[first], old[second])
                     children.append(child)
                     parents.append((first, second))
-        for i in self._select(n_mutate, pool).tolist():
+        for i in self._select(n_mutate).tolist():
             children.append(self._mutant(old[i]))
             parents.append((i, -1))
-        for i in self._select(n_tweak, pool).tolist():
+        for i in self._select(n_tweak).tolist():
             children.append(tweak_constants(old[i], self.pset, self.rng, scale=v.tweak_scale))
             parents.append((i, -1))
         for i in self._picks.tolist()[: max(0, size - len(children))]:
             children.append(old[i])
             parents.append((i, -1))
-        for i in self._select(size - len(children), pool).tolist():
+        for i in self._select(size - len(children)).tolist():
             children.append(old[i])
             parents.append((i, -1))
-        return children, parents
+        return self._diverse(children), np.array(parents, dtype=np.int64)
 
-    def _mates(self, pool: IntArray | None) -> tuple[int, int]:
-        """A crossover's two parents: by tournament among ``pool``, or two distinct picks (one
-        pick and a tournament winner when there is a single pick)."""
+    def _mates(self) -> tuple[int, int]:
+        """A crossover's two parents: by tournament, or two distinct picks (one pick and a
+        tournament winner when there is a single pick)."""
         picks = self._picks
         if len(picks) == 0:
-            i, j = (int(k) for k in self._select(2, pool))
+            i, j = (int(k) for k in self._select(2))
             return i, j
         if len(picks) == 1:
-            return int(picks[0]), int(self._select(1, pool)[0])
+            return int(picks[0]), int(self._select(1)[0])
         i, j = self.rng.choice(len(picks), size=2, replace=False)
         return int(picks[i]), int(picks[j])
 
@@ -436,10 +343,6 @@ class GPStrategy(AskTell[list[Program]]):
             "rng": encode_rng(self.rng),
         }
 
-    def to_state(self) -> dict[str, Any]:
-        """`AskTell.to_state` and the programs' ages."""
-        return {**super().to_state(), "ages": self._ages.tolist()}
-
     def _encode_population(self, population: list[Program]) -> list[str]:
         return self.genomes(population)
 
@@ -491,11 +394,6 @@ class GPStrategy(AskTell[list[Program]]):
                 variation=GPVariation(**state["options"]),
             )
             strategy._restore_cycle(state)
-            # checkpoints from before the age layers hold no ages: all 0 (unused in one layer)
-            ages = np.array(state.get("ages", [0] * strategy.population_size), dtype=np.int64)
-            if ages.shape != (strategy.population_size,) or (ages < 0).any():
-                raise ValueError("bad ages")
-            strategy._ages = ages
-        except (KeyError, TypeError, ValueError, OverflowError, GPError):
+        except (KeyError, TypeError, ValueError, GPError):
             raise StrategyError("malformed GP strategy checkpoint") from None
         return strategy
