@@ -47,6 +47,7 @@ def test_runs_list_show_best_lineage_export(
 ) -> None:
     status, out, _ = run(capsys, "runs", "list", "--db", str(db))
     assert status == 0 and "finished" in out and "3/3" in out
+    assert "…" not in out  # nothing cut at 80 columns, the creation time to the minute
     status, out, _ = run(capsys, "runs", "show", "1", "--db", str(db))
     assert status == 0 and '"liveliness": 0.05' in out and "loop_mika.flac" in out
     status, out, _ = run(

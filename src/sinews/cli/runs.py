@@ -56,17 +56,8 @@ def list_runs(db: Db = None) -> None:
     """List the stored runs."""
     with open_store(db, readonly=True) as store:
         table = Table(title=str(store.path))
-        for column in (
-            "run",
-            "kind",
-            "status",
-            "generations",
-            "population",
-            "best",
-            "song",
-            "created",
-        ):
-            table.add_column(column)
+        for column in ("run", "kind", "status", "gens", "pop", "best", "song", "created (UTC)"):
+            table.add_column(column, no_wrap=column != "song", overflow="fold")
         for info in store.runs():
             config = EvolutionConfig.from_dict(info.config)
             by_hand = config.by_hand
@@ -81,7 +72,7 @@ def list_runs(db: Db = None) -> None:
                 str(info.config.get("population", "?")),
                 _number(_best_fitness(store, info, config)),
                 song if song.startswith("demo:") else Path(song).name,
-                info.created,
+                info.created[:16].replace("T", " "),  # ISO 8601 to the minute
             )
         Console().print(table)
 
