@@ -220,9 +220,10 @@ def test_a_group_of_runs_and_a_run_that_stops_when_adequate(tmp_path: Path) -> N
             "--population", "12", "--generations", "6", "--seconds", "1", "--seed", "3",
             "--runs", "2", "--until", "1.0", "--db", db]  # fmt: skip
     done = subprocess.run([*sinews_command(), *args], capture_output=True, text=True,
-                          env={**os.environ, "COLUMNS": "200"})  # fmt: skip
+                          env={**os.environ, "COLUMNS": "80"})  # fmt: skip
     assert done.returncode == 0, done.stderr
     assert "2 runs of one setting" in done.stdout and "the group's best: run " in done.stdout
+    assert "…" not in done.stdout  # the tables grow past 80 columns rather than cut a number
     with RunStore(db) as store:
         infos = store.runs()
     assert [i.seed for i in infos] == [3, 4]

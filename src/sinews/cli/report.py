@@ -15,7 +15,21 @@ from sinews.experiments.kinds import best_of, kind_of
 from sinews.experiments.run_config import EvolutionConfig
 from sinews.store import RunStore, generation_stats
 
-__all__ = ["print_group", "print_summary", "run_with_progress"]
+__all__ = ["print_group", "print_summary", "print_table", "run_with_progress"]
+
+MAX_TABLE_WIDTH = 1000
+"""The widest a printed table may grow, in characters."""
+
+
+def print_table(table: Table) -> Console:
+    """Print ``table`` whole, as wide as its cells need even past the terminal's (or a file's
+    80 columns): a number cut to ``-0.0…`` misleads more than a long line. Returns a console
+    of that width for what follows."""
+    console = Console()
+    unlimited = console.options.update(max_width=MAX_TABLE_WIDTH)
+    console = Console(width=max(console.width, console.measure(table, options=unlimited).maximum))
+    console.print(table)
+    return console
 
 
 def print_group(store: RunStore, group: list[int]) -> None:
@@ -35,8 +49,7 @@ def print_group(store: RunStore, group: list[int]) -> None:
         used = f"{info.generations}/{info.config['generations']}"
         table.add_row(str(info.id), str(info.seed), used, _number(float(value)),
                       *[_number(terms.get(n)) for n in names])  # fmt: skip
-    console = Console()
-    console.print(table)
+    console = print_table(table)
     k = int(np.argmax(rated))
     console.print(f"the group's best: run {group[k]}, individual {bests[k].id} "
                   f"(fitness {_number(float(rated[k]))}); render it with: "
@@ -52,8 +65,7 @@ def _print_picks(store: RunStore, run_id: int) -> None:
     for generation in sorted({p.generation for p in picks}):
         chosen = [f"{p.index}: {p.id}" for p in picks if p.generation == generation]
         table.add_row(str(generation), ", ".join(chosen))
-    console = Console()
-    console.print(table)
+    console = print_table(table)
     if picks:
         console.print(f"latest pick: individual {picks[-1].id}; save it with:\n"
                       f"  sinews runs best {run_id} -o dancer.json")  # fmt: skip
@@ -142,8 +154,7 @@ def print_summary(store: RunStore, run_id: int) -> None:
             *[_number(values[k]) for values in terms.values()],
             *((", ".join(picked.get(generation, [])),) if picked else ()),
         )
-    console = Console()
-    console.print(table)
+    console = print_table(table)
     if not len(stats.generations):
         return
     best = best_of(store, run_id)

@@ -11,7 +11,7 @@ from rich.table import Table
 
 from sinews.cli.common import Db, Executor, Scheduler, Workers, open_store, write_text
 from sinews.cli.progress import frame_progress
-from sinews.cli.report import print_summary, run_with_progress
+from sinews.cli.report import print_summary, print_table, run_with_progress
 from sinews.errors import SinewsError
 from sinews.evolve import make_evaluator
 from sinews.experiments.evolution import full_weight_fitness
@@ -57,7 +57,7 @@ def list_runs(db: Db = None) -> None:
     with open_store(db, readonly=True) as store:
         table = Table(title=str(store.path))
         for column in ("run", "kind", "status", "gens", "pop", "best", "song", "created (UTC)"):
-            table.add_column(column, no_wrap=column != "song", overflow="fold")
+            table.add_column(column)
         for info in store.runs():
             config = EvolutionConfig.from_dict(info.config)
             by_hand = config.by_hand
@@ -74,7 +74,7 @@ def list_runs(db: Db = None) -> None:
                 song if song.startswith("demo:") else Path(song).name,
                 info.created[:16].replace("T", " "),  # ISO 8601 to the minute
             )
-        Console().print(table)
+        print_table(table)
 
 
 def _best_fitness(store: RunStore, info: RunInfo, config: EvolutionConfig) -> float | None:
@@ -145,7 +145,7 @@ def lineage(
                 " ".join(map(str, ancestor.parents)) or "-",
                 "yes" if ancestor.picked else "",
             )
-        Console().print(table)
+        print_table(table)
 
 
 @runs_app.command("resume")
