@@ -14,6 +14,7 @@ from rich.table import Table
 
 import sinews.benchmarks
 from sinews.benchmarks import Measurement
+from sinews.cli.report import print_table
 from sinews.errors import SinewsError
 
 __all__ = ["register"]
@@ -52,7 +53,7 @@ def bench(
     for name in names or known:
         if name not in known:
             raise SinewsError(f"no benchmark called {name!r}; choose from {', '.join(known)}")
-    console = Console(width=max(Console().width, 120))
+    console = Console()
     console.print(f"sinews {sinews.__version__} on {os.cpu_count()} cores")
     for name in names or known:
         module = importlib.import_module(f"sinews.benchmarks.{name}")
@@ -74,7 +75,7 @@ def bench(
                 m.unit,
                 m.reference_name,
             )
-        console.print(table)
+        print_table(table)
         for s in skipped:
             console.print(
                 f"skipped {s.case}: {s.reason}", markup=False, highlight=False, soft_wrap=True
