@@ -16,6 +16,7 @@ __all__ = [
     "MAX_JSON_DEPTH",
     "MAX_JSON_DIGITS",
     "MAX_MASSES",
+    "MAX_PHYSICS_HZ",
     "MAX_PICTURE_PIXELS",
     "MAX_POPULATION",
     "MAX_RUN_ID",
@@ -33,6 +34,8 @@ MAX_POPULATION = 5000
 MAX_GENERATIONS = 100_000
 MAX_MASSES = 64
 """Point masses per spring net (its time step is stable up to about 60)."""
+MAX_PHYSICS_HZ = 100_000
+"""Physics steps per simulated second of a figure (the control rate divides it)."""
 MIN_PICTURE_PIXELS = 16
 MAX_PICTURE_PIXELS = 4096
 """Width or height of a rendered picture or video frame."""

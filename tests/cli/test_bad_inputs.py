@@ -50,6 +50,8 @@ def files(tmp_path_factory: pytest.TempPathFactory) -> Path:
         (folder / f"{name}.json").write_text(text.replace(gene, value, 1))
     (folder / "nonutf8.toml").write_bytes(b"population = 4\n\xff\xfe")
     (folder / "nonutf8.keep").write_bytes(b"0: 1\n\xff\xfe")
+    (folder / "long.toml").write_text("seconds = 1e9\n")
+    (folder / "fast.toml").write_text("physics_hz = 1000000000000\n")
     made = run(folder, "dance", "g.json", "-o", "d.png", "--seconds", "1", "--trajectory", "t.npz")
     assert made.returncode == 0, made.stderr
     raw = (folder / "t.npz").read_bytes()
@@ -104,6 +106,11 @@ CASES = [
     ["evolve", "dancers", "--song", "ok.wav", "--strategy", "gp", "--db", "r.db"],
     ["evolve", "luxo", "--controller", "gp", "--strategy", "alton", "--db", "r.db"],
     ["evolve", "luxo3d", "--controller", "springnet", "--db", "r.db"],
+    ["evolve", "luxo", "--controller", "gp", "--seconds", "1e9", "--db", "r.db"],
+    ["evolve", "luxo3d", "--controller", "gp", "--config", "long.toml", "--db", "r.db"],
+    ["evolve", "snake", "--controller", "springnet", "--seconds", "1e9", "--db", "r.db"],
+    ["evolve", "luxo", "--controller", "gp", "--config", "fast.toml", "--db", "r.db"],
+    ["evolve", "snake", "--controller", "springnet", "--config", "fast.toml", "--db", "r.db"],
     ["evolve", "dancers", "--song", "ok.wav", "--generations", "10" * 7, "--db", "r.db"],
     ["score", "trunc.npz", "--song", "ok.wav"],
     ["score", "flip.npz", "--song", "ok.wav"],

@@ -158,7 +158,7 @@ NET_DANCE = ["luxo", "--controller", "springnet", "--task", "dance", "--song", "
         ([*NET_DANCE, "--tempi", "0.3"], "tempi must be between 0.5 and 2"),
         (["luxo", "--controller", "springnet", "--tempi", "0.8"], "tempi are for a dance"),
         (["luxo", "--controller", "springnet", "--drive", "90"], "a drive is for a dance"),
-        ([*NET_DANCE, "--drive", "1e9"], "drive must be at most 1000"),
+        ([*NET_DANCE, "--drive", "1e9"], "drive must be a number above 0 and at most 1000"),
         ([*NET_DANCE, "--clock", "sometimes"], "clock must be one of time, beats"),
         (["luxo", "--controller", "springnet", "--clock", "beats"], "a beat clock is for a dance"),
     ],

@@ -19,6 +19,7 @@ import numpy.typing as npt
 from sinews.control.music_input import MUSIC_TERMINALS
 from sinews.figures._mujoco import require_mujoco
 from sinews.figures.figure import Figure, FigureError
+from sinews.limits import MAX_SECONDS
 
 __all__ = [
     "DANCE_STYLE",
@@ -198,6 +199,9 @@ class Task:
                        *low):  # fmt: skip
             if isinstance(column, str):
                 self.figure.sensor_index(column)
+        if not 0 < self.seconds <= MAX_SECONDS:  # also refuses NaN
+            raise FigureError(f"{self.name}: a trial lasts more than 0 and at most "
+                              f"{MAX_SECONDS:g} s, got {self.seconds!r}")  # fmt: skip
         if not self.joints:
             raise FigureError(f"{self.name}: drive at least one joint")
         for joint in self.joints:

@@ -20,6 +20,7 @@ from sinews.errors import SinewsError
 from sinews.evolve import GenomeSpace
 from sinews.experiments.figures import heard_song
 from sinews.figures.tasks import Task, make_task
+from sinews.limits import MAX_PHYSICS_HZ, check_whole
 from sinews.music.features import MusicFeatures
 
 __all__ = ["GPSettings", "Runtime"]
@@ -64,8 +65,8 @@ class GPSettings:
                 task_name=str(values["task"]),
                 task_options=dict(values["task_options"]),
                 seconds=None if values["seconds"] is None else float(values["seconds"]),
-                control_hz=int(values["control_hz"]),
-                physics_hz=int(values["physics_hz"]),
+                control_hz=check_whole("control_hz", values["control_hz"], 1, MAX_PHYSICS_HZ),
+                physics_hz=check_whole("physics_hz", values["physics_hz"], 1, MAX_PHYSICS_HZ),
                 functions=tuple(str(f) for f in values["functions"]),
                 erc_range=(low, high),
                 song_path=_optional_text(values.get("song_path")),
@@ -75,8 +76,6 @@ class GPSettings:
             raise SinewsError("malformed GP run settings") from None
         if settings.seconds is not None and not settings.seconds > 0:
             raise SinewsError("seconds must be positive")
-        if min(settings.control_hz, settings.physics_hz) < 1:
-            raise SinewsError("control_hz and physics_hz must be positive")
         if settings.physics_hz % settings.control_hz:
             raise SinewsError("control_hz must divide physics_hz")
         _ = settings.pset  # an unknown function or bad constants fail here

@@ -25,7 +25,7 @@ from sinews.experiments.springnet.dance import (
 )
 from sinews.figures import Figure
 from sinews.figures.tasks import Task, make_task
-from sinews.limits import MAX_MASSES, check_whole
+from sinews.limits import MAX_MASSES, MAX_PHYSICS_HZ, MAX_SECONDS, check_whole
 from sinews.music.features import MusicFeatures
 
 __all__ = [
@@ -101,10 +101,12 @@ class SpringNetSettings:
         masses = values.get("masses") or max(4, len(joints))
         settings = cls(
             figure=figure,
-            seconds=_number(values.get("seconds"), "seconds"),
+            seconds=_number(values.get("seconds"), "seconds", MAX_SECONDS),
             masses=check_whole("masses", masses, 2, MAX_MASSES),
-            physics_hz=_whole(values.get("physics_hz") or PHYSICS_HZ[figure], "physics_hz", 1),
-            control_hz=_whole(values.get("control_hz"), "control_hz", 1),
+            physics_hz=check_whole(
+                "physics_hz", values.get("physics_hz") or PHYSICS_HZ[figure], 1, MAX_PHYSICS_HZ
+            ),
+            control_hz=check_whole("control_hz", values.get("control_hz"), 1, MAX_PHYSICS_HZ),
             task=values.get("task"),
             song_path=values.get("song_path"),
             song_hash=values.get("song_hash"),
@@ -265,19 +267,11 @@ def _drive(value: object) -> float:
     (`DRIVE_FORCE` when not given)."""
     if value is None:
         return DRIVE_FORCE
-    force = _number(value, "drive")
-    if force > MAX_DRIVE_FORCE:
-        raise SinewsError(f"drive must be at most {MAX_DRIVE_FORCE:g}, got {value!r}")
-    return force
+    return _number(value, "drive", MAX_DRIVE_FORCE)
 
 
-def _number(value: object, name: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, int | float) or not value > 0:
-        raise SinewsError(f"{name} must be a positive number, got {value!r}")
+def _number(value: object, name: str, most: float) -> float:
+    """``value`` as a float in (0, most]; else a one-line `SinewsError`."""
+    if isinstance(value, bool) or not isinstance(value, int | float) or not 0 < value <= most:
+        raise SinewsError(f"{name} must be a number above 0 and at most {most:g}, got {value!r}")
     return float(value)
-
-
-def _whole(value: object, name: str, least: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, int) or value < least:
-        raise SinewsError(f"{name} must be a whole number >= {least}, got {value!r}")
-    return value
