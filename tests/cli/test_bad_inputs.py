@@ -42,6 +42,13 @@ def files(tmp_path_factory: pytest.TempPathFactory) -> Path:
     rate = 22050
     tone = np.sin(2 * np.pi * 440 * np.arange(2 * rate) / rate).astype(np.float32)
     sf.write(folder / "ok.wav", 0.3 * tone, rate)
+    sf.write(folder / "ok.mp3", np.tile(0.3 * tone, 3), rate)
+    mp3 = bytearray((folder / "ok.mp3").read_bytes())
+    picks = np.random.default_rng(1)
+    for at in picks.integers(1000, len(mp3), 200):
+        mp3[at] = picks.integers(256)
+    (folder / "flipped.mp3").write_bytes(bytes(mp3))  # libmpg123 prints notes about it
+    (folder / "noise.mp3").write_bytes(picks.bytes(5000))
     assert run(folder, "dancer", "new", "-o", "g.json").returncode == 0
     text = (folder / "g.json").read_text()
     gene = json.dumps(json.loads(text)["body"]["stiffness"])
@@ -117,6 +124,8 @@ CASES = [
     ["score", "strfps.npz", "--song", "ok.wav"],
     ["score", "forged.npz", "--song", "ok.wav"],
     ["score", "nanpos.npz", "--song", "ok.wav"],
+    ["songs", "analyse", "flipped.mp3"],
+    ["songs", "analyse", "noise.mp3"],
     ["scene", "kittens", "-o", "k.png", "--height", "100000000", "--seconds", "0.1"],
     ["scene", "kittens", "-o", "k.png", "--seconds", "1e9"],
     ["sheet", "-o", "s.png", "--seconds", "1e12"],

@@ -9,9 +9,13 @@ with the file's path.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import stat
 import struct
+import sys
+import threading
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -34,6 +38,10 @@ MIN_SECONDS = 0.5
 _BLOCK_FRAMES = 8192
 _READ_BLOCK_FRAMES = 1 << 18
 _UNRECOGNISED_FORMAT = 1  # libsndfile's SF_ERR_UNRECOGNISED_FORMAT
+_NOT_DECODABLE = 7
+"""libsndfile's code for bytes it took for MP3 but cannot open ("File does not exist or is
+not a regular file"; the path was checked to be a regular file): ffmpeg gets a try."""
+_STDERR_LOCK = threading.Lock()
 _CONVERT_HINT = "convert it to WAV, FLAC, OGG or MP3"
 
 # suffix -> (soundfile format, subtype or None for the format's default)
@@ -194,7 +202,7 @@ def _decode_soundfile(path: Path) -> tuple[npt.NDArray[np.float32], int]:
     """
     blocks: list[npt.NDArray[np.float32]] = []
     try:
-        with sf.SoundFile(str(path)) as source:
+        with _c_stderr_dropped(), sf.SoundFile(str(path)) as source:
             rate = int(source.samplerate)
             promised = int(source.frames)
             if source.format == "WAV":
@@ -203,7 +211,7 @@ def _decode_soundfile(path: Path) -> tuple[npt.NDArray[np.float32], int]:
             while len(block := source.read(_READ_BLOCK_FRAMES, "float32", always_2d=True)):
                 blocks.append(block.mean(axis=1, dtype=np.float32))
     except sf.LibsndfileError as exc:
-        if exc.code == _UNRECOGNISED_FORMAT:
+        if exc.code in (_UNRECOGNISED_FORMAT, _NOT_DECODABLE):
             raise _NotForSoundfile from None
         raise AudioError(f"{path}: corrupt or truncated audio ({_reason(exc)})") from None
     except (sf.SoundFileError, RuntimeError) as exc:
@@ -211,6 +219,27 @@ def _decode_soundfile(path: Path) -> tuple[npt.NDArray[np.float32], int]:
     samples = np.concatenate(blocks) if blocks else np.zeros(0, np.float32)
     _check_complete(path, promised, len(samples), rate)
     return samples, rate
+
+
+@contextlib.contextmanager
+def _c_stderr_dropped() -> Iterator[None]:
+    """Send what C code writes to file descriptor 2 to /dev/null meanwhile.
+
+    libmpg123 (inside libsndfile) prints notes on a corrupt MP3 ("Illegal Audio-MPEG-Header",
+    "dequantization failed"); the file gets our one-line error instead. Process-wide, so other
+    threads' stderr is dropped too for the moment; the lock keeps two decodes from crossing
+    their saves and restores.
+    """
+    with _STDERR_LOCK:
+        sys.stderr.flush()
+        saved = os.dup(2)
+        try:
+            with open(os.devnull, "wb") as null:
+                os.dup2(null.fileno(), 2)
+            yield
+        finally:
+            os.dup2(saved, 2)
+            os.close(saved)
 
 
 def _check_complete(path: Path, promised: int, decoded: int, rate: int) -> None:
