@@ -43,6 +43,7 @@ def files(tmp_path_factory: pytest.TempPathFactory) -> Path:
     tone = np.sin(2 * np.pi * 440 * np.arange(2 * rate) / rate).astype(np.float32)
     sf.write(folder / "ok.wav", 0.3 * tone, rate)
     sf.write(folder / "ok.mp3", np.tile(0.3 * tone, 3), rate)
+    sf.write(folder / "slow.wav", tone[:1000], 100)  # 10 s at 100 Hz
     mp3 = bytearray((folder / "ok.mp3").read_bytes())
     picks = np.random.default_rng(1)
     for at in picks.integers(1000, len(mp3), 200):
@@ -126,6 +127,8 @@ CASES = [
     ["score", "nanpos.npz", "--song", "ok.wav"],
     ["songs", "analyse", "flipped.mp3"],
     ["songs", "analyse", "noise.mp3"],
+    ["songs", "analyse", "slow.wav"],
+    ["dance", "g.json", "-o", "o.png", "--song", "slow.wav"],
     ["scene", "kittens", "-o", "k.png", "--height", "100000000", "--seconds", "0.1"],
     ["scene", "kittens", "-o", "k.png", "--seconds", "1e9"],
     ["sheet", "-o", "s.png", "--seconds", "1e12"],

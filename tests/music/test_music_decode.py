@@ -179,9 +179,9 @@ def test_too_short(tmp_path: Path) -> None:
 
 
 def test_too_long_is_refused_from_the_header(tmp_path: Path) -> None:
-    # 21 minutes at 1 kHz, 8 bits: a small file with a long header duration.
+    # 21 minutes at 8 kHz (the lowest rate read), 8 bits: 10 MB.
     path = tmp_path / "marathon.wav"
-    sf.write(path, np.zeros(round((MAX_SECONDS + 60) * 1000), np.float32), 1000, subtype="PCM_U8")
+    sf.write(path, np.zeros(round((MAX_SECONDS + 60) * 8000), np.int16), 8000, subtype="PCM_U8")
     with pytest.raises(AudioError) as excinfo:
         load_audio(path)
     _assert_audio_error(path, excinfo, "too long", "21.0 min")

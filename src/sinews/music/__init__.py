@@ -16,7 +16,14 @@ from __future__ import annotations
 from sinews.music.analysis import analyse, analyse_file, default_cache_dir, shift_beats
 from sinews.music.beat_align import beat_align_score, beat_lift, kinematic_beats, smoothness
 from sinews.music.classic import classic_kick_frames, classic_kicks, classic_spectra
-from sinews.music.decode import MAX_SECONDS, MIN_SECONDS, Audio, load_audio, save_wav
+from sinews.music.decode import (
+    MAX_SECONDS,
+    MIN_SECONDS,
+    SAMPLE_RATES,
+    Audio,
+    load_audio,
+    save_wav,
+)
 from sinews.music.demo import DEFAULT_DEMO, DEMO_NAMES, DemoSong, demo_song, write_demo
 from sinews.music.errors import AudioError
 from sinews.music.features import ANALYSIS_VERSION, MusicFeatures
@@ -28,6 +35,7 @@ __all__ = [
     "DEMO_NAMES",
     "MAX_SECONDS",
     "MIN_SECONDS",
+    "SAMPLE_RATES",
     "Audio",
     "AudioError",
     "DemoSong",

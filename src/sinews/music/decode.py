@@ -29,14 +29,26 @@ from sinews.limits import MAX_SECONDS  # the longest song, checked before decodi
 from sinews.music.errors import AudioError
 from sinews.music.ffmpeg import FfmpegFailed, decode_with_ffmpeg
 
-__all__ = ["MAX_SECONDS", "MIN_SECONDS", "Audio", "check_readable_file", "load_audio", "save_wav"]
+__all__ = [
+    "MAX_SECONDS",
+    "MIN_SECONDS",
+    "SAMPLE_RATES",
+    "Audio",
+    "check_readable_file",
+    "load_audio",
+    "save_wav",
+]
 
 MIN_SECONDS = 0.5
 """Shortest song we accept: shorter files cannot carry a beat."""
+SAMPLE_RATES = (8000, 192_000)
+"""Lowest and highest sample rate we decode, Hz: telephone audio to studio masters (the
+highest bounds a 20-minute song's memory, about 0.9 GB of float32)."""
 
 
 _BLOCK_FRAMES = 8192
-_READ_BLOCK_FRAMES = 1 << 18
+_READ_BLOCK_SAMPLES = 1 << 19
+"""Samples (frames × channels) read at a time: 2 MiB of float32, however many channels."""
 _UNRECOGNISED_FORMAT = 1  # libsndfile's SF_ERR_UNRECOGNISED_FORMAT
 _NOT_DECODABLE = 7
 """libsndfile's code for bytes it took for MP3 but cannot open ("File does not exist or is
@@ -104,6 +116,7 @@ def load_audio(path: str | os.PathLike[str]) -> Audio:
         samples, rate = _decode_soundfile(path)
     except _NotForSoundfile:
         samples, rate = _decode_foreign(path)
+        _checked_rate(path, rate)
     audio = Audio(samples=samples, sample_rate=rate)
     if not np.all(np.isfinite(audio.samples)):
         raise AudioError(f"{path}: corrupt audio (it contains NaN or infinite samples)")
@@ -191,6 +204,14 @@ def _check_length(path: Path, seconds: float) -> None:
         )
 
 
+def _checked_rate(path: Path, rate: int) -> int:
+    low, high = SAMPLE_RATES
+    if not low <= rate <= high:
+        raise AudioError(f"{path}: a sample rate of {rate} Hz; songs are read at {low} to "
+                         f"{high} Hz")  # fmt: skip
+    return rate
+
+
 class _NotForSoundfile(Exception):
     """libsndfile does not recognise the file's format."""
 
@@ -203,12 +224,13 @@ def _decode_soundfile(path: Path) -> tuple[npt.NDArray[np.float32], int]:
     blocks: list[npt.NDArray[np.float32]] = []
     try:
         with _c_stderr_dropped(), sf.SoundFile(str(path)) as source:
-            rate = int(source.samplerate)
+            rate = _checked_rate(path, int(source.samplerate))
             promised = int(source.frames)
             if source.format == "WAV":
                 promised = max(promised, _wav_promised_frames(path) or 0)
             _check_length(path, promised / rate)
-            while len(block := source.read(_READ_BLOCK_FRAMES, "float32", always_2d=True)):
+            frames = max(1, _READ_BLOCK_SAMPLES // source.channels)
+            while len(block := source.read(frames, "float32", always_2d=True)):
                 blocks.append(block.mean(axis=1, dtype=np.float32))
     except sf.LibsndfileError as exc:
         if exc.code in (_UNRECOGNISED_FORMAT, _NOT_DECODABLE):
