@@ -212,6 +212,31 @@ def test_missing_things_are_reported(store: RunStore) -> None:
         store.checkpoint(run, 0)
 
 
+@pytest.mark.parametrize(("sql", "value", "message"), [
+    ("UPDATE runs SET config = ?", '{"generations": 3', "config of run 1 .*not readable JSON"),
+    ("UPDATE runs SET config = ?", "[" * 100_000 + "]" * 100_000, "not readable JSON"),
+    ("UPDATE runs SET config = ?", "[3]", "config of run 1 .*not an object"),
+    ("UPDATE individuals SET terms = ?", '{"a": "far"}', "terms .*not names and numbers"),
+    ("UPDATE individuals SET terms = ?", '{"a": ' + "9" * 5000 + "}", "terms .*not readable"),
+    ("UPDATE individuals SET genome = ?", b"\xff[1,", "genome .*not readable JSON"),
+])  # fmt: skip
+def test_a_tampered_row_is_a_store_error(tmp_path: Path, sql: str, value: str | bytes,
+                                         message: str) -> None:  # fmt: skip
+    path = tmp_path / "runs.db"
+    with RunStore(path) as store:
+        run = new_run(store, codec="json")
+        rec = record(0, np.random.default_rng(5))
+        store.add_generation(run, GenerationRecord(
+            generation=0, genomes=[[1.0]] * P, parents=rec.parents, checkpoint=b"gp",
+            fitness=rec.fitness, terms=rec.terms, term_names=rec.term_names))  # fmt: skip
+    with sqlite3.connect(path) as conn:
+        conn.execute(sql, (value,))
+    with RunStore(path) as store, pytest.raises(StoreError, match=message):
+        store.run(run)
+        store.individuals(run)
+        store.scores(run)
+
+
 def test_database_is_in_wal_mode_with_our_ids(store: RunStore) -> None:
     new_run(store)
     store.close()

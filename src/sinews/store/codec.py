@@ -54,10 +54,22 @@ def encode_genome(genome: Any, codec: str) -> bytes:
     return encoded.tobytes()
 
 
+def stored_json(text: str | bytes, what: str) -> Any:
+    """A JSON document read back from the database (NaN and infinities allowed, as stored).
+
+    Raises:
+        StoreError: ``what`` is not JSON, or is nested too deep or has too long an integer.
+    """
+    try:
+        return json.loads(text)
+    except (ValueError, RecursionError):  # JSONDecodeError, bad UTF-8, huge integers
+        raise StoreError(f"malformed {what} in the database (not readable JSON)") from None
+
+
 def decode_genome(blob: bytes, codec: str) -> Any:
     """The genome of a blob: a (G,) float64 array for the float codecs, JSON for ``json``, text."""
     if codec == "json":
-        return json.loads(blob)
+        return stored_json(blob, "genome")
     if codec in TEXT_CODECS:
         try:
             return blob.decode("utf-8")

@@ -22,7 +22,7 @@ import numpy as np
 import numpy.typing as npt
 
 from sinews.limits import MAX_RUN_ID
-from sinews.store.codec import CODECS, decode_genome, encode_genome
+from sinews.store.codec import CODECS, decode_genome, encode_genome, stored_json
 from sinews.store.environment import code_version, default_db_path
 from sinews.store.errors import StoreError
 from sinews.store.records import (
@@ -393,7 +393,7 @@ class RunStore:
             index=np.array([r[1] for r in rows], dtype=np.int64),
             fitness=np.array([r[2] for r in rows], dtype=np.float64),
             failed=np.array([bool(r[3]) for r in rows], dtype=bool),
-            terms=[json.loads(r[4]) if r[4] else {} for r in rows],
+            terms=[_terms(r[4]) if r[4] else {} for r in rows],
         )
 
     def _individuals(self, where: str, args: Sequence[Any], order: str = "") -> list[Individual]:
@@ -411,7 +411,7 @@ class RunStore:
                 genome=decode_genome(row[4], row[10]),
                 seed=row[5],
                 fitness=row[6],
-                terms=None if row[7] is None else json.loads(row[7]),
+                terms=None if row[7] is None else _terms(row[7]),
                 picked=bool(row[8]),
                 failed=bool(row[9]),
                 parents=tuple(int(p) for p in row[11].split(",")) if row[11] else (),
@@ -460,8 +460,21 @@ class RunStore:
 
 def _run_info(row: tuple[Any, ...]) -> RunInfo:
     values = list(row)
-    values[2] = json.loads(values[2])
+    values[2] = stored_json(values[2], f"config of run {values[0]}")
+    if not isinstance(values[2], dict):
+        raise StoreError(f"malformed config of run {values[0]} in the database (not an object)")
     return RunInfo(*values)
+
+
+def _terms(text: str) -> dict[str, float]:
+    """An individual's stored fitness terms: name -> value."""
+    terms = stored_json(text, "fitness terms")
+    try:
+        return {str(name): float(value) for name, value in terms.items()}
+    except (AttributeError, TypeError, ValueError):
+        raise StoreError(
+            "malformed fitness terms in the database (not names and numbers)"
+        ) from None
 
 
 def _column(values: npt.ArrayLike | None, size: int, kind: type) -> list[Any]:
