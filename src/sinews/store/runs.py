@@ -466,11 +466,11 @@ def _run_info(row: tuple[Any, ...]) -> RunInfo:
     return RunInfo(*values)
 
 
-def _terms(text: str) -> dict[str, float]:
-    """An individual's stored fitness terms: name -> value."""
+def _terms(text: str) -> dict[str, float | None]:
+    """An individual's stored fitness terms: name -> value (None: not measured)."""
     terms = stored_json(text, "fitness terms")
     try:
-        return {str(name): float(value) for name, value in terms.items()}
+        return {str(k): None if v is None else float(v) for k, v in terms.items()}
     except (AttributeError, TypeError, ValueError):
         raise StoreError(
             "malformed fitness terms in the database (not names and numbers)"
