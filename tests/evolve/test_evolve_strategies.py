@@ -256,8 +256,10 @@ def test_checkpoint_is_json_with_the_generator_state() -> None:
 
 @pytest.mark.parametrize(
     "data",
-    [b"\xff\xfe", b"[]", b'{"strategy": "cma"}', b'{"strategy": "ga", "population_size": 4}'],
-)
+    [b"\xff\xfe", b"[]", b'{"strategy": "cma"}', b'{"strategy": "ga", "population_size": 4}',
+     b"[" * 100_000 + b"]" * 100_000,
+     b'{"strategy": "ga", "population_size": ' + b"9" * 5000 + b"}"],
+)  # fmt: skip
 def test_bad_checkpoints_are_refused(data: bytes) -> None:
     with pytest.raises(StrategyError):
         restore_strategy(data)

@@ -16,7 +16,6 @@ Example:
 
 from __future__ import annotations
 
-import json
 from collections.abc import Mapping
 from typing import Any
 
@@ -26,7 +25,7 @@ from sinews.evolve.alton import AltonGA
 from sinews.evolve.errors import StrategyError
 from sinews.evolve.gp import GPStrategy
 from sinews.evolve.strategies import GeneticAlgorithm, HybridStrategy, InteractiveStrategy
-from sinews.evolve.strategy import AskTell, GenomeSpace
+from sinews.evolve.strategy import AskTell, GenomeSpace, checkpoint_state
 
 __all__ = ["STRATEGIES", "make_strategy", "restore_strategy"]
 
@@ -77,10 +76,7 @@ def restore_strategy(checkpoint: bytes) -> AskTell[Any]:
     Raises:
         StrategyError: not a checkpoint, an unknown strategy, or a malformed one.
     """
-    try:
-        state = json.loads(checkpoint)
-    except (UnicodeDecodeError, json.JSONDecodeError):
-        raise StrategyError("not a strategy checkpoint (not JSON)") from None
+    state = checkpoint_state(checkpoint)
     if not isinstance(state, dict):
         raise StrategyError("not a strategy checkpoint")
     return _strategy(state.get("strategy")).from_state(state)

@@ -32,7 +32,7 @@ from sinews.evolve.operators import Variation
 if TYPE_CHECKING:
     from sinews.control.gp import PrimitiveSet
 
-__all__ = ["AskTell", "GenomeSpace", "Strategy"]
+__all__ = ["AskTell", "GenomeSpace", "Strategy", "checkpoint_state"]
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
@@ -276,11 +276,19 @@ class AskTell(ABC, Generic[Population]):
     @classmethod
     def from_bytes(cls, data: bytes) -> Self:
         """Rebuild a strategy from `to_bytes` output."""
-        try:
-            state = json.loads(data)
-        except (UnicodeDecodeError, json.JSONDecodeError):
-            raise StrategyError("not a strategy checkpoint (not JSON)") from None
-        return cls.from_state(state)
+        return cls.from_state(checkpoint_state(data))
+
+
+def checkpoint_state(data: bytes) -> object:
+    """The JSON document of a checkpoint (`AskTell.to_bytes`), not yet checked.
+
+    Raises:
+        StrategyError: not readable JSON (bad UTF-8, syntax, nesting too deep, huge integers).
+    """
+    try:
+        return json.loads(data)
+    except (ValueError, RecursionError):
+        raise StrategyError("not a strategy checkpoint (not JSON)") from None
 
 
 class Strategy(AskTell[FloatArray]):
