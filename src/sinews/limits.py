@@ -19,8 +19,10 @@ __all__ = [
     "MAX_PHYSICS_HZ",
     "MAX_PICTURE_PIXELS",
     "MAX_POPULATION",
+    "MAX_RUN_FILE_BYTES",
     "MAX_RUN_ID",
     "MAX_SECONDS",
+    "MAX_SEED",
     "MAX_TRAJECTORY_BYTES",
     "MIN_PICTURE_PIXELS",
     "check_number",
@@ -40,6 +42,10 @@ MIN_PICTURE_PIXELS = 16
 MAX_PICTURE_PIXELS = 4096
 """Width or height of a rendered picture or video frame."""
 MAX_RUN_ID = 2**63 - 1
+MAX_SEED = 2**62
+"""A run's seed (a group of runs takes the seeds after it; all fit SQLite's integers)."""
+MAX_RUN_FILE_BYTES = 2**20
+"""Size of a TOML run file."""
 """SQLite's largest integer: run and individual ids above it cannot exist."""
 MAX_JSON_BYTES = 16 * 2**20
 MAX_JSON_DEPTH = 64

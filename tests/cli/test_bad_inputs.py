@@ -60,6 +60,9 @@ def files(tmp_path_factory: pytest.TempPathFactory) -> Path:
     (folder / "nonutf8.keep").write_bytes(b"0: 1\n\xff\xfe")
     (folder / "long.toml").write_text("seconds = 1e9\n")
     (folder / "fast.toml").write_text("physics_hz = 1000000000000\n")
+    (folder / "deep.toml").write_text("population = " + "[" * 100_000 + "]" * 100_000 + "\n")
+    (folder / "longint.toml").write_text("population = " + "9" * 5000 + "\n")
+    (folder / "infseed.toml").write_text("seed = 1e999\n")
     made = run(folder, "dance", "g.json", "-o", "d.png", "--seconds", "1", "--trajectory", "t.npz")
     assert made.returncode == 0, made.stderr
     raw = (folder / "t.npz").read_bytes()
@@ -118,6 +121,22 @@ CASES = [
     ["evolve", "luxo3d", "--controller", "gp", "--config", "long.toml", "--db", "r.db"],
     ["evolve", "snake", "--controller", "springnet", "--seconds", "1e9", "--db", "r.db"],
     ["evolve", "luxo", "--controller", "gp", "--config", "fast.toml", "--db", "r.db"],
+    ["evolve", "luxo", "--controller", "gp", "--config", "deep.toml", "--db", "r.db"],
+    ["evolve", "luxo", "--controller", "gp", "--config", "longint.toml", "--db", "r.db"],
+    ["evolve", "luxo", "--controller", "gp", "--config", "infseed.toml", "--db", "r.db"],
+    [
+        "evolve",
+        "luxo",
+        "--controller",
+        "gp",
+        "--config",
+        "infseed.toml",
+        "--runs",
+        "2",
+        "--db",
+        "r.db",
+    ],
+    ["evolve", "luxo", "--controller", "gp", "--seed", "9" * 30, "--db", "r.db"],
     ["evolve", "snake", "--controller", "springnet", "--config", "fast.toml", "--db", "r.db"],
     ["evolve", "dancers", "--song", "ok.wav", "--generations", "10" * 7, "--db", "r.db"],
     ["score", "trunc.npz", "--song", "ok.wav"],

@@ -21,6 +21,7 @@ from sinews.errors import SinewsError
 from sinews.evolve import make_evaluator
 from sinews.experiments.kinds import RunKind, run_kinds
 from sinews.experiments.run_config import load_toml
+from sinews.limits import MAX_SEED, check_whole
 from sinews.store import RunStore
 
 __all__ = ["register"]
@@ -46,7 +47,9 @@ def _evolve(
     file_values = load_toml(config) if config is not None else {}
     first_seed = options["seed"]
     if first_seed is None:
-        first_seed = int(file_values.get("seed", 0) or 0)
+        first_seed = file_values.get("seed", 0)
+    if runs > 1:  # the group's seeds are SEED .. SEED + runs - 1
+        check_whole("seed", first_seed, 0, MAX_SEED - runs + 1)
     with open_store(db) as store:
         group = []
         for k in range(runs):  # every run made first: a bad setting fails before any runs

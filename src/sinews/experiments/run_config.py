@@ -29,7 +29,13 @@ from typing import Any
 
 from sinews.errors import SinewsError
 from sinews.evolve import FitnessError, FitnessSpec, PhaseIn, parse_weights
-from sinews.limits import MAX_GENERATIONS, MAX_POPULATION
+from sinews.limits import (
+    MAX_GENERATIONS,
+    MAX_POPULATION,
+    MAX_RUN_FILE_BYTES,
+    MAX_SEED,
+    check_whole,
+)
 
 __all__ = ["ConfigError", "EvolutionConfig", "build_config", "fitness_spec", "load_toml"]
 
@@ -62,16 +68,13 @@ class EvolutionConfig:
     strategy_options: Mapping[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
-        if not 2 <= self.population <= MAX_POPULATION:
-            raise ConfigError(
-                f"population must be from 2 to {MAX_POPULATION}, got {self.population}"
-            )
-        if not 1 <= self.generations <= MAX_GENERATIONS:
-            raise ConfigError(
-                f"generations must be from 1 to {MAX_GENERATIONS}, got {self.generations}"
-            )
-        if self.seed < 0:
-            raise ConfigError(f"seed must be >= 0, got {self.seed}")
+        limits = (("population", 2, MAX_POPULATION), ("generations", 1, MAX_GENERATIONS),
+                  ("seed", 0, MAX_SEED))  # fmt: skip
+        for name, low, high in limits:
+            try:
+                check_whole(name, getattr(self, name), low, high)
+            except SinewsError as exc:
+                raise ConfigError(str(exc)) from None
 
     @property
     def by_hand(self) -> bool:
@@ -93,9 +96,9 @@ class EvolutionConfig:
         """Read back `to_dict` output (e.g. a stored run's config)."""
         try:
             return cls(
-                population=int(doc["population"]),
-                generations=int(doc["generations"]),
-                seed=int(doc["seed"]),
+                population=doc["population"],
+                generations=doc["generations"],
+                seed=doc["seed"],
                 fitness=FitnessSpec.from_dict(doc["fitness"]),
                 strategy=str(doc["strategy"]["name"]),
                 strategy_options=dict(doc["strategy"].get("options", {})),
@@ -109,13 +112,21 @@ def load_toml(path: str | os.PathLike[str]) -> dict[str, Any]:
     path = Path(path)
     try:
         with open(path, "rb") as fh:
-            return tomllib.load(fh)
+            data = fh.read(MAX_RUN_FILE_BYTES + 1)
     except OSError as exc:
         raise ConfigError(f"{path}: cannot read ({exc.strerror or exc})") from None
+    if len(data) > MAX_RUN_FILE_BYTES:
+        raise ConfigError(f"{path}: too large for a run file (over {MAX_RUN_FILE_BYTES} bytes)")
+    try:
+        return tomllib.loads(data.decode("utf-8"))
     except UnicodeDecodeError:
         raise ConfigError(f"{path}: not a UTF-8 text file") from None
     except tomllib.TOMLDecodeError as exc:
         raise ConfigError(f"{path}: not valid TOML ({exc})") from None
+    except RecursionError:
+        raise ConfigError(f"{path}: not valid TOML (nested too deep)") from None
+    except ValueError:  # an integer of thousands of digits
+        raise ConfigError(f"{path}: not valid TOML (a number too long to read)") from None
 
 
 def fitness_spec(
@@ -203,9 +214,9 @@ def build_config(
     )
     try:
         config = EvolutionConfig(
-            population=int(merged["population"]),
-            generations=int(merged["generations"]),
-            seed=int(merged["seed"]),
+            population=merged["population"],
+            generations=merged["generations"],
+            seed=merged["seed"],
             fitness=spec,
             strategy=str(strategy_name),
             strategy_options={k: v for k, v in table.items() if k != "name"},

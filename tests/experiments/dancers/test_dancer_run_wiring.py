@@ -65,7 +65,7 @@ def test_options_override_the_run_file_which_overrides_defaults(tmp_path: Path) 
         ({"fitness": "beat-align,beat-align"}, "twice"),
         ({"phase_in": "soon"}, "START:FULL"),
         ({"phase_in": "9:3"}, "start <= full"),
-        ({"population": 1}, "population must be from 2 to"),
+        ({"population": 1}, "population must be a whole number from 2 to"),
         ({"seconds": -1.0}, "seconds must be a positive number"),
         ({"seconds": "long"}, "seconds must be a positive number"),
     ],
