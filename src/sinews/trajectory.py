@@ -161,7 +161,12 @@ class Trajectory:
         return self.n_frames / self.fps
 
     def save(self, path: str | os.PathLike[str]) -> Path:
-        """Write the trajectory to a compressed ``.npz`` file and return its path."""
+        """Write the trajectory to a compressed ``.npz`` file and return its path.
+
+        Raises:
+            TrajectoryError: the file cannot be written (a missing or read-only folder, a
+                full disk), in one line.
+        """
         path = Path(path)
         arrays: dict[str, npt.ArrayLike] = {
             "format_version": np.int32(FORMAT_VERSION),
@@ -176,8 +181,11 @@ class Trajectory:
             value = getattr(self, name)
             if value is not None:
                 arrays[name] = np.array(value, dtype=str) if name == "node_shapes" else value
-        with atomic_path(path) as tmp, open(tmp, "wb") as fh:
-            np.savez_compressed(fh, **arrays)  # type: ignore[arg-type]
+        try:
+            with atomic_path(path) as tmp, open(tmp, "wb") as fh:
+                np.savez_compressed(fh, **arrays)  # type: ignore[arg-type]
+        except OSError as exc:
+            raise TrajectoryError(f"cannot write {path}: {exc.strerror or exc}") from None
         return path
 
     @classmethod

@@ -99,6 +99,8 @@ CASES = [
     ["dance", "g.json", "-o", "o.png", "--song", "ok.wav", "--bpm", "1e300"],
     ["dance", "g.json", "-o", "o.png", "--size", "100000", "--seconds", "1"],
     ["dance", "g.json", "-o", "o.png", "--seconds", "1e12"],
+    ["dance", "g.json", "-o", "o.png", "--seconds", "1", "--trajectory", "no/such/t.npz"],
+    ["scene", "kittens", "-o", "k.png", "--seconds", "0.1", "--trajectory", "no/such/t.npz"],
     ["runs", "show", BIG, "--db", "r.db"],
     ["runs", "resume", "9" * 20, "--db", "r.db"],
     ["runs", "best", BIG, "-o", "b.json", "--db", "r.db"],
