@@ -187,6 +187,11 @@ def test_too_long_is_refused_from_the_header(tmp_path: Path) -> None:
     _assert_audio_error(path, excinfo, "too long", "21.0 min")
 
 
+def test_writing_into_a_missing_folder_says_so(tmp_path: Path) -> None:
+    with pytest.raises(AudioError, match="missing is not a directory"):
+        save_wav(tmp_path / "missing" / "tone.wav", np.zeros(SR), SR)
+
+
 def test_directory(tmp_path: Path) -> None:
     path = tmp_path / "album.wav"
     path.mkdir()

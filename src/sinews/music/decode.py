@@ -160,6 +160,8 @@ def save_wav(path: str | os.PathLike[str], samples: npt.ArrayLike, sample_rate: 
         data = data[:, None]
     if data.ndim != 2 or data.shape[0] == 0 or not np.all(np.isfinite(data)):
         raise AudioError(f"{path}: samples must be a finite (S,) or (S, C) array with S > 0")
+    if not path.parent.is_dir():  # libsndfile would only say "System error"
+        raise AudioError(f"{path}: cannot write audio ({path.parent} is not a directory)")
     try:
         with (
             atomic_path(path) as tmp,
