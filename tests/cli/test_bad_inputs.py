@@ -167,6 +167,18 @@ def test_bad_input_is_one_line_exit_2(files: Path, args: list[str]) -> None:
     assert (files / "r.db").read_bytes() == before  # nothing lost or changed
 
 
+def test_an_unknown_gl_back_end_is_one_line(tmp_path: Path) -> None:
+    # MuJoCo refuses a MUJOCO_GL it does not know as it loads, before any rendering.
+    result = subprocess.run(
+        [*sinews_command(), "evolve", "luxo", "--controller", "gp", "--db", "r.db"],
+        capture_output=True, text=True, cwd=tmp_path, timeout=300,
+        env={**os.environ, "MUJOCO_GL": "vulkan-please"},
+    )  # fmt: skip
+    assert result.returncode == 2, result.stderr[-2000:]
+    assert result.stderr.splitlines() == [result.stderr.strip()]
+    assert "cannot load MuJoCo" in result.stderr and "MUJOCO_GL" in result.stderr
+
+
 def test_read_commands_create_nothing(tmp_path: Path) -> None:
     result = run(tmp_path, "runs", "list", "--db", "nonexist_dir/x.db")
     assert result.returncode == 2

@@ -22,6 +22,7 @@ from __future__ import annotations
 import math
 import os
 import sys
+import warnings
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -174,16 +175,18 @@ class MujocoView:
         model.vis.global_.offheight = max(int(model.vis.global_.offheight), height)
         context_class = _context_class(gl_backend())
         try:
-            self._gl = context_class(width, height)
-            self._gl.make_current()
-        except Exception as exc:
+            with warnings.catch_warnings():  # glfw warns of each failed step, then fails
+                warnings.simplefilter("ignore")
+                self._gl = context_class(width, height)
+                self._gl.make_current()
+                self.context = mj.MjrContext(model, mj.mjtFontScale.mjFONTSCALE_150)
+        except Exception as exc:  # e.g. glfw without a display: no GL library loaded
             raise GLBackendError(
                 f"cannot open an OpenGL context for MuJoCo (MUJOCO_GL={gl_backend()}: "
                 f"{_first_line(exc)}); {INSTALL_HINT}"
             ) from None
         self.data = mj.MjData(model)
         self.scene = mj.MjvScene(model, maxgeom=10_000)
-        self.context = mj.MjrContext(model, mj.mjtFontScale.mjFONTSCALE_150)
         mj.mjr_setBuffer(mj.mjtFramebuffer.mjFB_OFFSCREEN, self.context)
         self.option = mj.MjvOption()
         self.perturb = mj.MjvPerturb()
