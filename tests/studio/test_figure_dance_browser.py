@@ -157,7 +157,7 @@ def test_the_form_starts_a_dance_and_a_3d_run(
     page.click("#start-run")
     page.wait_for_function(
         "figures.run && figures.run.song && figures.run.generations === 1"
-        " && !figures.run.job.running && figures.shown === 0"
+        " && !figures.run.job?.running && figures.shown === 0"
     )
     run = page.evaluate("figures.run")
     assert (run["kind"], run["task"], run["song"]["id"]) == ("gp", "luxo-dance", uploaded)
@@ -176,7 +176,7 @@ def test_the_form_starts_a_dance_and_a_3d_run(
     page.click("#start-run")
     page.wait_for_function(
         "figures.run && figures.run.figure === 'luxo3d' && figures.run.generations === 1"
-        " && !figures.run.job.running && figures.shown === 0 && figures.pack"
+        " && !figures.run.job?.running && figures.shown === 0 && figures.pack"
     )
     assert page.evaluate("figures.pack.header.drawer") == "solid"
     assert page.evaluate("figures.run.song") is None

@@ -141,7 +141,7 @@ def test_a_run_started_in_the_page_is_watched_until_done(
     page.click("#start-run")
     page.wait_for_function(
         "figures.run && figures.run.figure === 'snake' && figures.run.generations === 3"
-        " && !figures.run.job.running && figures.shown === 2"
+        " && !figures.run.job?.running && figures.shown === 2"
     )
     expect(page.locator(".cell canvas")).to_have_count(5)
     assert page.evaluate("document.getElementById('progress').value") == 3

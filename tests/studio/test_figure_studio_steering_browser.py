@@ -91,7 +91,7 @@ def test_a_page_run_survives_a_killed_server_and_ends_as_the_cli_run(
         page.fill("#more", "2")
         page.click("#evolve")
         page.wait_for_function(
-            f"figures.run.generations === {target} && !figures.run.job.running"
+            f"figures.run.generations === {target} && !figures.run.job?.running"
             f" && figures.shown === {target - 1}"
         )
         expect(page.locator("#progress-text")).to_contain_text(f"{target} / {target} generations")
