@@ -144,7 +144,7 @@ def main() -> None:
     if args.save:
         np.save(args.save, best)
     goal, loss, result = rate(task, best[None], record=True)
-    print(f"replayed: goal {goal[0] * 100:.1f} cm, loss {loss[0]:.4f}")
+    print(f"replayed: goal {goal[0] * 100:.1f} cm, loss {loss[0] + 0.0:.4f}")
     if args.picture:
         from sinews.render.figure_media import render_figure
         from sinews.render.figure_scene import scene_of
