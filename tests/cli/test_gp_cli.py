@@ -267,6 +267,8 @@ def test_ctrl_c_in_a_group_leaves_no_run_marked_running(tmp_path: Path) -> None:
         (["--config", "toes.toml"], "'toes' is not one of this run's style terms"),
         (["--config", "goal.toml"], "'distance' is not one of this run's style terms"),
         (["--config", "text.toml"], "constraints must be a list of term names"),
+        (["--config", "late.toml"], "constraints_from must be a generation from 0 to"),
+        (["--config", "loose.toml"], "constraints_from needs constraints"),
     ],
 )
 def test_bad_group_and_termination_settings(tmp_path: Path, extra: list[str], message: str) -> None:
@@ -274,6 +276,8 @@ def test_bad_group_and_termination_settings(tmp_path: Path, extra: list[str], me
     (tmp_path / "toes.toml").write_text('constraints = ["head", "toes"]\n')
     (tmp_path / "goal.toml").write_text('constraints = ["distance"]\n')
     (tmp_path / "text.toml").write_text('constraints = "head"\n')
+    (tmp_path / "late.toml").write_text('constraints = ["head"]\nconstraints_from = "5"\n')
+    (tmp_path / "loose.toml").write_text("constraints_from = 5\n")
     args = ["evolve", "luxo", "--controller", "gp", "--task", "hop", *extra, "--db", "r.db"]
     done = subprocess.run([*sinews_command(), *args], capture_output=True, text=True, cwd=tmp_path)
     assert done.returncode == 2 and done.stderr.count("\n") == 1 and message in done.stderr

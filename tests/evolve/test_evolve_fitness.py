@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from sinews.evolve import WORST_FITNESS, FitnessError, FitnessSpec, PhaseIn, parse_weights
-from sinews.experiments.evolution import retune_fitness
+from sinews.experiments.evolution import full_weight_fitness, retune_fitness
 from sinews.store import RunStore
 
 
@@ -110,6 +111,34 @@ def test_constraints_round_trip_and_must_be_style_terms() -> None:
             FitnessSpec(main="goal", weights={"goal": 1.0, "head": 1.0}, constraints=bad)
     with pytest.raises(FitnessError, match="malformed"):
         FitnessSpec.from_dict({**constrained().to_dict(), "constraints": "head"})
+
+
+def test_constraints_from_breeds_by_the_weights_first_and_the_best_is_always_clean() -> None:
+    later = dataclasses.replace(constrained(), constraints_from=50)  # past a 50-generation run
+    assert later.constraints_start == 50 and later.final == 50
+    assert constrained().constraints_start == 1 and constrained().final == 2
+    terms = np.array([[-0.03, -0.01, 0.0], [-0.04, 0.0, 0.0]])  # near and touching; clean
+    failed = np.zeros(2, dtype=bool)
+    breeding = later.combine(terms, failed, 49)  # full style weight, no ranking yet
+    np.testing.assert_allclose(breeding, [-0.04, -0.04])
+    best = later.combine(terms, failed, later.final)  # how the run's best is chosen
+    assert best[1] > best[0]
+    stored = [
+        {"goal": -0.03, "head": -0.01, "fallen": 0.0},
+        {"goal": -0.04, "head": 0.0, "fallen": 0.0},
+    ]
+    assert np.argmax(full_weight_fitness(stored, [False, False], later)) == 1
+    assert FitnessSpec.from_dict(later.to_dict()) == later
+    assert "constraints_from" not in constrained().to_dict()
+
+
+@pytest.mark.parametrize("value", [-1, True, 2.5, "5", 10**9])
+def test_constraints_from_must_be_a_generation(value: object) -> None:
+    with pytest.raises(FitnessError, match="constraints_from must be a generation"):
+        FitnessSpec(main="goal", weights={"goal": 1.0, "head": 1.0}, constraints=("head",),
+                    constraints_from=value)  # type: ignore[arg-type]  # fmt: skip
+    with pytest.raises(FitnessError, match="needs constraints"):
+        FitnessSpec(main="goal", weights={"goal": 1.0}, constraints_from=3)
 
 
 def test_retuning_a_run_keeps_its_constraints(tmp_path: Path) -> None:

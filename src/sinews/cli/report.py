@@ -128,7 +128,7 @@ def print_summary(store: RunStore, run_id: int) -> None:
     scores = store.scores(run_id)
     stats = generation_stats(scores)
     terms = stats.best_terms if len(stats.best_terms) > 1 else {}  # one term: = best
-    phased = config.fitness.phase_in.full > 0 and len(terms) > 1
+    phased = config.fitness.final > 0 and len(terms) > 1
     full = full_weight_bests(scores, config.fitness) if phased and len(scores.fitness) else None
     picked: dict[int, list[str]] = {}
     for pick in store.picks(run_id):
@@ -162,7 +162,7 @@ def print_summary(store: RunStore, run_id: int) -> None:
     text = kind_of(info).genome_text(best)
     rated = f"fitness {_number(best.fitness)}"
     spec = EvolutionConfig.from_dict(info.config).fitness
-    if spec.phase_in.full > 0 and best.terms:
+    if spec.final > 0 and best.terms:
         full = full_weight_fitness([best.terms or {}], [best.failed], spec)[0]
         rated += f", at full style weight {_number(full)}"
     console.print(

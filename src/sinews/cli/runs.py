@@ -86,7 +86,7 @@ def _best_fitness(store: RunStore, info: RunInfo, config: EvolutionConfig) -> fl
 
 def _rated(individual: Individual, config: EvolutionConfig) -> float | None:
     """An individual's fitness at full style weight where style phases in, else as stored."""
-    if config.fitness.phase_in.full == 0 or not individual.terms:
+    if config.fitness.final == 0 or not individual.terms:
         return individual.fitness
     terms, failed = [individual.terms], [individual.failed]
     return float(full_weight_fitness(terms, failed, config.fitness)[0])

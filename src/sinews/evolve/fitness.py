@@ -10,9 +10,10 @@ rated by the main goal only, then the style weights rise linearly until they
 reach full weight — "teach it how to get to the X first", then add style.
 
 Some style terms may be *constraints* (e.g. the head never on the floor): from
-the phase-in's start on, Deb's feasibility rule (2000) ranks every individual
-that loses nothing on them above every one that does, and those that do by
-how much they lose, so a few centimetres of the goal can never buy a fall.
+the phase-in's start on (or from ``constraints_from``), Deb's feasibility rule
+(2000) ranks every individual that loses nothing on them above every one that
+does, and those that do by how much they lose, so a few centimetres of the goal
+can never buy a fall. The run's best is always chosen by that rule.
 """
 
 from __future__ import annotations
@@ -26,6 +27,7 @@ import numpy as np
 import numpy.typing as npt
 
 from sinews.errors import SinewsError
+from sinews.limits import MAX_GENERATIONS
 
 __all__ = ["WORST_FITNESS", "FitnessError", "FitnessSpec", "PhaseIn", "parse_weights"]
 
@@ -74,14 +76,18 @@ class FitnessSpec:
             are every other entry.
         phase_in: how the style weights rise over generations.
         constraints: style terms (penalties, at most 0) that must be 0: from
-            ``phase_in.start`` on, an individual below 0 on any of them ranks
+            `constraints_start` on, an individual below 0 on any of them ranks
             below every individual that is not (see `combine`).
+        constraints_from: the first generation bred by the constraints (None:
+            ``phase_in.start``). Past the last generation, they only choose the
+            run's best: breeding feels them as the weighted style terms alone.
     """
 
     main: str
     weights: Mapping[str, float]
     phase_in: PhaseIn = field(default_factory=PhaseIn)
     constraints: tuple[str, ...] = ()
+    constraints_from: int | None = None
 
     def __post_init__(self) -> None:
         if self.main not in self.weights:
@@ -96,6 +102,17 @@ class FitnessSpec:
                 )
         if len(set(self.constraints)) != len(self.constraints):
             raise FitnessError("constraints name a term twice")
+        if self.constraints_from is not None:
+            if not self.constraints:
+                raise FitnessError("constraints_from needs constraints")
+            value = self.constraints_from
+            if isinstance(value, bool) or not (
+                isinstance(value, int) and 0 <= value <= MAX_GENERATIONS
+            ):
+                raise FitnessError(
+                    f"constraints_from must be a generation from 0 to {MAX_GENERATIONS}, "
+                    f"got {value!r}"
+                )
         for name, weight in self.weights.items():
             if not math.isfinite(weight):
                 raise FitnessError(f"weight of {name!r} must be a finite number, got {weight}")
@@ -105,6 +122,17 @@ class FitnessSpec:
     def names(self) -> tuple[str, ...]:
         """Every term, the main goal first (the column order of `combine`)."""
         return (self.main, *(n for n in self.weights if n != self.main))
+
+    @property
+    def constraints_start(self) -> int:
+        """The first generation the constraints rank (`constraints_from`, else the phase-in's)."""
+        return self.phase_in.start if self.constraints_from is None else self.constraints_from
+
+    @property
+    def final(self) -> int:
+        """The first generation rated as a run's best is: full style weight, and the
+        constraints ranking if there are any."""
+        return max(self.phase_in.full, self.constraints_start if self.constraints else 0)
 
     def weights_at(self, generation: int) -> dict[str, float]:
         """The weight of each term at ``generation`` (style terms phased in)."""
@@ -125,7 +153,7 @@ class FitnessSpec:
 
         Returns:
             (P,) weighted sums; `WORST_FITNESS` where failed or any term is NaN.
-            With constraints, from ``phase_in.start`` on: the sums of those
+            With constraints, from `constraints_start` on: the sums of those
             that lose nothing on them; below the least of these, each other
             one's total loss on them (Deb's rule: a tournament then prefers
             the one that keeps them, or of two that do not, the one that loses
@@ -137,7 +165,7 @@ class FitnessSpec:
             total = terms @ weights
         bad = failed | np.isnan(terms).any(axis=1) | ~np.isfinite(total)
         total = np.where(bad, WORST_FITNESS, total)
-        if not self.constraints or generation < self.phase_in.start:
+        if not self.constraints or generation < self.constraints_start:
             return total
         columns = [self.names.index(name) for name in self.constraints]
         loss = -np.minimum(terms[:, columns], 0.0).sum(axis=1)
@@ -154,6 +182,8 @@ class FitnessSpec:
         }
         if self.constraints:
             doc["constraints"] = list(self.constraints)
+        if self.constraints_from is not None:
+            doc["constraints_from"] = self.constraints_from
         return doc
 
     @classmethod
@@ -166,9 +196,16 @@ class FitnessSpec:
                 weights={str(k): float(v) for k, v in doc["weights"].items()},
                 phase_in=PhaseIn(start=int(phase.get("start", 0)), full=int(phase.get("full", 0))),
                 constraints=_names(doc.get("constraints", [])),
+                constraints_from=_generation(doc.get("constraints_from")),
             )
         except (KeyError, TypeError, ValueError, AttributeError):
             raise FitnessError("malformed fitness description") from None
+
+
+def _generation(value: object) -> int | None:
+    if value is None or (isinstance(value, int) and not isinstance(value, bool)):
+        return value
+    raise TypeError("not a generation")
 
 
 def _names(value: object) -> tuple[str, ...]:

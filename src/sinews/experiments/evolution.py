@@ -375,7 +375,7 @@ def full_weight_fitness(
         [[np.nan if t.get(name) is None else t[name] for name in spec.names] for t in terms],
         dtype=np.float64,
     ).reshape(len(terms), len(spec.names))
-    return spec.combine(values, np.asarray(failed, dtype=bool), spec.phase_in.full)
+    return spec.combine(values, np.asarray(failed, dtype=bool), spec.final)
 
 
 def full_weight_bests(table: ScoreTable, spec: FitnessSpec) -> npt.NDArray[np.float64]:

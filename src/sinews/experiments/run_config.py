@@ -11,6 +11,7 @@ A run file looks like this (every key optional)::
     weights = { liveliness = 0.2 }
     phase_in = { start = 5, full = 15 }
     constraints = ["head"]        # style terms that must be 0 (feasible first)
+    constraints_from = 50         # ... in breeding from this generation (default: phase_in's start)
 
     [strategy]
     name = "ga"
@@ -40,7 +41,7 @@ from sinews.limits import (
 __all__ = ["ConfigError", "EvolutionConfig", "build_config", "fitness_spec", "load_toml"]
 
 _COMMON = ("population", "generations", "seed", "fitness", "weights", "phase_in",
-           "constraints", "strategy")  # fmt: skip
+           "constraints", "constraints_from", "strategy")  # fmt: skip
 
 
 class ConfigError(SinewsError):
@@ -136,6 +137,7 @@ def fitness_spec(
     phase_in: PhaseIn,
     defaults: Mapping[str, float],
     constraints: Sequence[str] = (),
+    constraints_from: int | None = None,
 ) -> FitnessSpec:
     """The fitness spec of a list of terms, the first being the main goal.
 
@@ -145,6 +147,7 @@ def fitness_spec(
         phase_in: the style phase-in.
         defaults: every known term and its default weight.
         constraints: style terms in ``names`` that must be 0 (`FitnessSpec`).
+        constraints_from: the first generation bred by them (`FitnessSpec`).
 
     Raises:
         FitnessError: an unknown or repeated term, a weight for a term not used, or
@@ -167,6 +170,7 @@ def fitness_spec(
         weights={n: float(weights.get(n, defaults[n])) for n in names},
         phase_in=phase_in,
         constraints=tuple(constraints),
+        constraints_from=constraints_from,
     )
 
 
@@ -211,6 +215,7 @@ def build_config(
         phase_in=_phase_in(merged["phase_in"]),
         defaults=term_defaults,
         constraints=_constraints(merged.get("constraints") or []),
+        constraints_from=merged.get("constraints_from"),
     )
     try:
         config = EvolutionConfig(

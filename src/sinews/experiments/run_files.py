@@ -78,10 +78,13 @@ def fitness_plot(store: RunStore, run_id: int) -> FitnessPlot:
     terms = weighed if len(weighed) > 1 else {}  # one term: = best; weight 0: not rated
     series = {"best": stats.best, "mean": stats.mean, **terms}
     marks: dict[str, float] = {}
-    if spec.phase_in.full > 0 and len(weighed) > 1:  # early bests are rated without style
+    if spec.final > 0 and len(weighed) > 1:  # early bests are rated without style
         series["best at full weight"] = full_weight_bests(store.scores(run_id), spec)
-        start = "style and constraints start" if spec.constraints else "style starts"
+        together = spec.constraints and spec.constraints_start == spec.phase_in.start
+        start = "style and constraints start" if together else "style starts"
         marks = {start: spec.phase_in.start, "style full": spec.phase_in.full}
+        if spec.constraints and not together and spec.constraints_start <= stats.generations[-1]:
+            marks["constraints start"] = spec.constraints_start
     song = info.config.get("song", "")
     title = f"run {run_id}: {info.kind}{f' to {song}' if song else ''}"
     title += " (terms of each best)" if terms else ""
