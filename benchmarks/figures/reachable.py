@@ -29,12 +29,11 @@ from __future__ import annotations
 
 import argparse
 import json
-from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
-from sinews.figures.rollout import rollout
+from sinews.figures.rollout import RolloutResult, rollout
 from sinews.figures.task import Task
 from sinews.figures.tasks import make_task
 from sinews.figures.terms import TaskMeter
@@ -77,7 +76,9 @@ class Periodic:
         return np.clip(out, self.low, self.high)
 
 
-def rate(task: Task, z: FloatArray, *, record: bool = False) -> tuple[FloatArray, FloatArray, Any]:
+def rate(
+    task: Task, z: FloatArray, *, record: bool = False
+) -> tuple[FloatArray, FloatArray, RolloutResult]:
     """(P,) main goal, m, and (P,) loss on head, fallen and touch, of each row of ``z``."""
     meter = TaskMeter(task, len(z))
     result = rollout(task.figure, Periodic(task, z), len(z), task.seconds, observer=meter,

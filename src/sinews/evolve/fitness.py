@@ -132,7 +132,7 @@ class FitnessSpec:
     def final(self) -> int:
         """The first generation rated as a run's best is: full style weight, and the
         constraints ranking if there are any."""
-        return max(self.phase_in.full, self.constraints_start if self.constraints else 0)
+        return max(self.phase_in.full, self.constraints_start)  # the phase-in's start <= full
 
     def weights_at(self, generation: int) -> dict[str, float]:
         """The weight of each term at ``generation`` (style terms phased in)."""
@@ -196,16 +196,10 @@ class FitnessSpec:
                 weights={str(k): float(v) for k, v in doc["weights"].items()},
                 phase_in=PhaseIn(start=int(phase.get("start", 0)), full=int(phase.get("full", 0))),
                 constraints=_names(doc.get("constraints", [])),
-                constraints_from=_generation(doc.get("constraints_from")),
+                constraints_from=doc.get("constraints_from"),  # checked by __post_init__
             )
         except (KeyError, TypeError, ValueError, AttributeError):
             raise FitnessError("malformed fitness description") from None
-
-
-def _generation(value: object) -> int | None:
-    if value is None or (isinstance(value, int) and not isinstance(value, bool)):
-        return value
-    raise TypeError("not a generation")
 
 
 def _names(value: object) -> tuple[str, ...]:
