@@ -53,7 +53,9 @@ def main() -> None:
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cache", type=Path, default=default_cache())
-    parser.add_argument("--set", default="tune", choices=("tune", "heldout", "confirm", "all"))
+    parser.add_argument(
+        "--set", default="tune", choices=("tune", "heldout", "confirm", "confirm2", "all")
+    )
     parser.add_argument("--librosa-python", default=None)
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--json", type=Path, default=None)

@@ -40,7 +40,9 @@ def main() -> None:
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cache", type=Path, default=default_cache())
-    parser.add_argument("--set", default="tune", choices=("tune", "heldout", "confirm", "all"))
+    parser.add_argument(
+        "--set", default="tune", choices=("tune", "heldout", "confirm", "confirm2", "all")
+    )
     args = parser.parse_args()
     _, songs = load_corpus()
     print("| song | ref BPM | S / 2S | reference at | ratio | alternation: pooled; 5 registers |")
