@@ -1,6 +1,6 @@
 """Score sinews' beat tracker against the corpus's reference beats, and time it.
 
-    .venv/bin/python benchmarks/beats/evaluate.py [--set tune|heldout|confirm|all]
+    .venv/bin/python benchmarks/beats/evaluate.py [--set tune|heldout|confirm|confirm2|confirm3|all]
         [--librosa-python /work/evalvenv/bin/python] [--json OUT] [--repeats 3]
 
 Each excerpt (see fetch.py) is decoded once with `sinews.music.load_audio`; `analyse` (the
@@ -27,7 +27,7 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
-from fetch import default_cache, excerpt_path, load_corpus  # noqa: E402
+from fetch import SETS, default_cache, excerpt_path, load_corpus  # noqa: E402
 from metrics import score, tempo_of, trim  # noqa: E402
 
 _LIBROSA_TIMER = r"""
@@ -53,9 +53,7 @@ def main() -> None:
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cache", type=Path, default=default_cache())
-    parser.add_argument(
-        "--set", default="tune", choices=("tune", "heldout", "confirm", "confirm2", "all")
-    )
+    parser.add_argument("--set", default="tune", choices=(*SETS, "all"))
     parser.add_argument("--librosa-python", default=None)
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--json", type=Path, default=None)

@@ -18,6 +18,8 @@ import tomllib
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
+SETS = ("tune", "heldout", "confirm", "confirm2", "confirm3")
+"""The corpus's sets, in the order they were fixed (docs/beats.md)."""
 
 
 def default_cache() -> Path:

@@ -1,6 +1,6 @@
 """What tells a slow metrical level from its double? Two measures per song (docs/beats.md).
 
-    .venv/bin/python benchmarks/beats/levels.py [--set tune|heldout|confirm|all]
+    .venv/bin/python benchmarks/beats/levels.py [--set tune|heldout|confirm|confirm2|confirm3|all]
 
 For each song with reference beats: our tempo, the reference's, and the level the
 reference is at relative to ours. The pair of levels is (S, 2S) with 2S = our tempo if it
@@ -25,7 +25,7 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
-from fetch import default_cache, excerpt_path, load_corpus  # noqa: E402
+from fetch import SETS, default_cache, excerpt_path, load_corpus  # noqa: E402
 
 
 def alternation(values: np.ndarray, frames: np.ndarray) -> float:
@@ -40,9 +40,7 @@ def main() -> None:
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cache", type=Path, default=default_cache())
-    parser.add_argument(
-        "--set", default="tune", choices=("tune", "heldout", "confirm", "confirm2", "all")
-    )
+    parser.add_argument("--set", default="tune", choices=(*SETS, "all"))
     args = parser.parse_args()
     _, songs = load_corpus()
     print("| song | ref BPM | S / 2S | reference at | ratio | alternation: pooled; 5 registers |")
