@@ -11,8 +11,6 @@ from sinews.music.beats import (
     HEARD_SLACK_S,
     SWITCH_BEATS,
     _beat_frames,
-    _interleaved,
-    _nested_share,
     _normalised,
     _smoothed,
     onset_envelope,
@@ -90,38 +88,6 @@ def test_steady_beats_do_not_change_tempo() -> None:
     tempo, found = track(_clicks(times, 50.0, weights), FPS)
     assert tempo == pytest.approx(120.0, rel=0.02)
     assert np.all(np.abs(np.diff(found) - 0.5) < 0.03)
-
-
-def test_beats_keep_the_phase_of_half_their_tempo(monkeypatch: pytest.MonkeyPatch) -> None:
-    # 120 BPM whose every other beat is accented (1.0), the beats between weak (0.3) and
-    # the off-beats loud (0.8): at 120 alone the programme takes the louder off-beats, at
-    # 60 it takes the accents; the beats follow the slower level's phase (step 6)
-    beats = np.arange(0.3, 40.0, 0.5)
-    offbeats = beats + 0.25
-    times = np.concatenate([beats, offbeats])
-    weights = np.concatenate(
-        [np.where(np.arange(len(beats)) % 2 == 0, 1.0, 0.3), np.full(len(offbeats), 0.8)]
-    )
-    order = np.argsort(times)
-    envelope = _clicks(times[order], 40.0, weights[order])
-
-    def on(found: np.ndarray, grid: np.ndarray) -> float:
-        return float(np.mean(np.abs(found[:, None] - grid[None, :]).min(axis=1) < 0.035))
-
-    monkeypatch.setattr("sinews.music.beats.NESTED_MIN", 0.0)
-    tempo, unnested = track(envelope, FPS)
-    assert tempo == pytest.approx(120.0, rel=0.02) and on(unnested, offbeats) > 0.9
-    monkeypatch.undo()
-    tempo, found = track(envelope, FPS)
-    assert tempo == pytest.approx(120.0, rel=0.02) and on(found, beats) > 0.95
-
-
-def test_nested_share_and_interleaving() -> None:
-    slow = np.array([0, 60, 120, 180])
-    assert _nested_share(slow, np.arange(0, 200, 30), 7.5) == 1.0
-    assert _nested_share(slow, np.arange(15, 200, 30), 7.5) == 0.0
-    assert _nested_share(slow, np.array([0, 30, 90, 150]), 7.5) == 0.25
-    assert np.array_equal(_interleaved(slow), [0, 30, 60, 90, 120, 150, 180])
 
 
 def test_track_is_deterministic() -> None:

@@ -24,11 +24,6 @@ Programming", J. New Music Research 36(1)) at the metrical level a listener taps
    one and back, each change costing `SWITCH_BEATS` typical beats. A beat in a state
    counts its period's share to the power 1 - `FIT_COUNT_POWER` (as the fit of step 3
    weighs levels), so a faster state does not win by having more beats.
-6. Nesting: a listener's beats carry the beats of half the tempo. When fewer than half
-   (`NESTED_MIN`) of the half tempo's tracked beats lie within a quarter period of the
-   chosen beats, the chosen beats sit between the slower level's (a busy off-beat pulled
-   the programme over); they are replaced by the half tempo's beats and the midpoints
-   between them, so the tempo stays and the phase follows the slower level.
 """
 
 from __future__ import annotations
@@ -82,11 +77,6 @@ SWITCH_BEATS = 8.0
 """A tempo change costs as much as this many typical beats (tuning set: 4 let steady
 songs wander to a relative for a few bars, 12 no longer followed supertux-classic's
 change from 125 to 94 BPM; docs/beats.md)."""
-
-NESTED_MIN = 0.5
-"""Below this share of the half tempo's beats on the chosen tempo's beats (within a quarter
-period), the chosen beats are on the off-beat of the slower level: they are replaced by
-the half tempo's beats and the midpoints between them."""
 
 HEARD = 0.1
 """The music is heard from the first frame whose onset envelope reaches this share of
@@ -218,69 +208,28 @@ def track(
         return math.nan, np.zeros(0)
     local = _normalised(envelope)
     mean = float(local.mean())
-    tracked: dict[float, npt.NDArray[np.int64]] = {}
-    best: tuple[float, float] | None = None
+    best: tuple[float, float, npt.NDArray[np.float64]] | None = None
     for tempo in candidates:
         frames = _beat_frames(local, 60.0 * fps / tempo, fps)
         if len(frames) < 2:
             continue
-        tracked[tempo] = frames
         fit = _fit(local, frames) / mean * tempo_prior(tempo)
         if best is None or fit > best[0]:
-            best = (fit, tempo)
+            best = (fit, tempo, frames.astype(np.float64) / fps)
     if best is None:
         return math.nan, np.zeros(0)
     tempo = best[1]
-    period = 60.0 * fps / tempo
-    frames = _with_changes(local, fps, tempo, tracked[tempo], candidates)
-    half = next((f for t, f in tracked.items() if abs(2.0 * t / tempo - 1.0) < 0.03), None)
-    if half is not None and _nested_share(half, frames, period / 4.0) < NESTED_MIN:
-        frames = _interleaved(half)
-    return tempo, frames.astype(np.float64) / fps
-
-
-def _with_changes(
-    local: npt.NDArray[np.float64],
-    fps: float,
-    tempo: float,
-    frames: npt.NDArray[np.int64],
-    candidates: list[float],
-) -> npt.NDArray[np.int64]:
-    """The beat frames at ``tempo`` allowed to change to its 3:4, 4:3, 2:3 or 3:2 relatives.
-
-    ``frames`` (the fixed-tempo beats) are kept when no relative is a candidate, or when
-    the changes take over the song (the beats' median interval off the tempo by > 3 %).
-    """
     others = tuple(
         60.0 * fps / c for c in candidates if any(abs(c / tempo / r - 1.0) < 0.03 for r in _CHANGES)
     )
     if not others:
-        return frames
+        return tempo, best[2]
     period = 60.0 * fps / tempo
-    typical = float(_smoothed(local, period)[frames].mean())
-    changed = _beat_frames(local, period, fps, others, SWITCH_BEATS * typical)
-    if len(changed) < 2 or abs(float(np.median(np.diff(changed))) / period - 1) > 0.03:
-        return frames
-    return changed
-
-
-def _nested_share(
-    slow: npt.NDArray[np.int64], fast: npt.NDArray[np.int64], tolerance: float
-) -> float:
-    """Share of the (K,) ``slow`` beat frames within ``tolerance`` frames of a ``fast`` one."""
-    if len(slow) == 0 or len(fast) == 0:
-        return 1.0
-    nearest = np.clip(np.searchsorted(fast, slow), 1, len(fast) - 1)
-    distance = np.minimum(np.abs(slow - fast[nearest - 1]), np.abs(fast[nearest] - slow))
-    return float(np.mean(distance <= tolerance))
-
-
-def _interleaved(slow: npt.NDArray[np.int64]) -> npt.NDArray[np.int64]:
-    """(2K - 1,) the ``slow`` beat frames with the midpoint of each interval between them."""
-    beats = np.empty(2 * len(slow) - 1, dtype=np.int64)
-    beats[0::2] = slow
-    beats[1::2] = (slow[:-1] + slow[1:]) // 2
-    return beats
+    typical = float(_smoothed(local, period)[np.round(best[2] * fps).astype(np.int64)].mean())
+    frames = _beat_frames(local, period, fps, others, SWITCH_BEATS * typical)
+    if len(frames) < 2 or abs(float(np.median(np.diff(frames))) * tempo / (60.0 * fps) - 1) > 0.03:
+        return tempo, best[2]  # the changes took over the song: keep the tempo the fit chose
+    return tempo, frames.astype(np.float64) / fps
 
 
 def _fit(local: npt.NDArray[np.float64], frames: npt.NDArray[np.int64]) -> float:
