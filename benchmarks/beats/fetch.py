@@ -18,7 +18,7 @@ import tomllib
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-SETS = ("tune", "heldout", "confirm", "confirm2", "confirm3")
+SETS = ("tune", "heldout", "confirm", "confirm2", "confirm3", "confirm4")
 """The corpus's sets, in the order they were fixed (docs/beats.md)."""
 
 

@@ -10,7 +10,7 @@ Programming", J. New Music Research 36(1)) at the metrical level a listener taps
    each refined to its own nearest autocorrelation peak.
 3. Each candidate is tracked (step 4) and scored by how strongly its beats land on
    onsets: the mean of the normalised envelope at the beats, over its mean everywhere,
-   times the fourth root of the number of beats (`_fit`), times a tempo prior that is
+   times the number of beats to the power 0.2 (`_fit`), times a tempo prior that is
    flat over 90-180 BPM (where listeners tap) and falls off as a Gaussian (sigma 0.3
    octave) outside. The best candidate is the tempo.
 4. Beats: the beat sequence maximising the (Gaussian-smoothed) envelope at the beats
@@ -65,8 +65,9 @@ _METRE_WEIGHTS = ((1, 1.0), (2, 0.5), (4, 0.25))
 """A period also scores by its double and quadruple (half bar and bar in 4/4)."""
 _RELATIVES = (1.0, 0.5, 2.0, 2.0 / 3.0, 1.5, 0.75, 4.0 / 3.0, 0.25, 4.0, 1.0 / 3.0, 3.0)
 """Tempo ratios tried against the strongest autocorrelation period."""
-FIT_COUNT_POWER = 0.25
-"""A candidate's fit is its beats' mean envelope times their count to this power."""
+FIT_COUNT_POWER = 0.2
+"""A candidate's fit is its beats' mean envelope times their count to this power (0.25 until
+ANALYSIS_VERSION 5: it put 18 of 126 corpus songs at double the reference tempo; docs/beats.md)."""
 _REFINE = 0.06
 """A relative's period is refined to the autocorrelation peak within this fraction."""
 
@@ -233,10 +234,10 @@ def track(
 
 
 def _fit(local: npt.NDArray[np.float64], frames: npt.NDArray[np.int64]) -> float:
-    """How well beats land on onsets: their mean envelope times the fourth root of their count.
+    """How well beats land on onsets: their mean envelope times their count to `FIT_COUNT_POWER`.
 
     The mean alone favours the slower of two levels that fit (its beats are the strong
-    half); the root of the count leans mildly to the faster one.
+    half); the power of the count leans mildly to the faster one.
     """
     return float(local[frames].mean()) * len(frames) ** FIT_COUNT_POWER
 
