@@ -5,7 +5,8 @@
 For each package in corpus.toml: `apt-get download PACKAGE=VERSION` and `dpkg-deb -x`
 into DIR (default: $SINEWS_BEATS_CACHE or ~/.cache/sinews-beats), then each excerpt is
 cut with ffmpeg to DIR/excerpts/ID.wav (44.1 kHz, mono, 16-bit). Files already there are
-kept. Needs apt-get, dpkg-deb and ffmpeg; runs with any Python >= 3.11 (no sinews import).
+kept. A file given as ARCHIVE!MEMBER is read from inside a zip archive (nexuiz-music's
+music.pk3). Needs apt-get, dpkg-deb and ffmpeg; runs with any Python >= 3.11 (no sinews import).
 """
 
 from __future__ import annotations
@@ -15,10 +16,11 @@ import os
 import subprocess
 import sys
 import tomllib
+import zipfile
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-SETS = ("tune", "heldout", "confirm", "confirm2", "confirm3", "confirm4")
+SETS = ("tune", "heldout", "confirm", "confirm2", "confirm3", "confirm4", "confirm5")
 """The corpus's sets, in the order they were fixed (docs/beats.md)."""
 
 
@@ -57,7 +59,7 @@ def fetch(cache: Path) -> None:
         out = excerpt_path(cache, song["id"])
         if out.exists():
             continue
-        source = tree / song["file"]
+        source = _source(tree, song["file"])
         subprocess.run(
             [
                 "ffmpeg",
@@ -81,6 +83,20 @@ def fetch(cache: Path) -> None:
             check=True,
         )
         print(f"cut {out.name}", file=sys.stderr)
+
+
+def _source(tree: Path, file: str) -> Path:
+    """The file to cut: ``PATH`` in the package tree, or ``ARCHIVE!MEMBER`` (a zip such as a
+    .pk3) extracted next to its archive once."""
+    if "!" not in file:
+        return tree / file
+    archive, member = file.split("!", 1)
+    out = tree / f"{archive}.members" / member
+    if not out.exists():
+        out.parent.mkdir(parents=True, exist_ok=True)
+        with zipfile.ZipFile(tree / archive) as zf:
+            out.write_bytes(zf.read(member))
+    return out
 
 
 def main() -> None:
