@@ -11,7 +11,6 @@ from sinews.music.beats import (
     HEARD_SLACK_S,
     SWITCH_BEATS,
     _beat_frames,
-    _nested,
     _normalised,
     _smoothed,
     onset_envelope,
@@ -89,40 +88,6 @@ def test_steady_beats_do_not_change_tempo() -> None:
     tempo, found = track(_clicks(times, 50.0, weights), FPS)
     assert tempo == pytest.approx(120.0, rel=0.02)
     assert np.all(np.abs(np.diff(found) - 0.5) < 0.03)
-
-
-def test_loose_beats_win_over_tight_off_beats(monkeypatch: pytest.MonkeyPatch) -> None:
-    # 120 BPM played loosely (each beat up to 50 ms early or late) against quieter off-beats
-    # on the grid: at 120 alone the programme takes the regular off-beats; half the tempo
-    # follows the beats, and step 6 puts the beats back on them
-    rng = np.random.default_rng(1)
-    beats = np.arange(0.3, 40.0, 0.5)
-    envelope = np.zeros(round(40.0 * FPS))
-    envelope[np.round((beats + 0.25) * FPS).astype(int)[:-1]] = 0.8
-    envelope[np.round(beats * FPS).astype(int) + rng.integers(-3, 4, len(beats))] = 1.0
-
-    def on(found: np.ndarray, grid: np.ndarray) -> float:
-        return float(np.mean(np.abs(found[:, None] - grid[None, :]).min(axis=1) < 0.05))
-
-    monkeypatch.setattr("sinews.music.beats.NESTED_MIN", 0.0)
-    tempo, unnested = track(envelope, FPS)
-    assert tempo == pytest.approx(120.0, rel=0.02) and on(unnested, beats + 0.25) > 0.9
-    monkeypatch.undo()
-    tempo, found = track(envelope, FPS)
-    assert tempo == pytest.approx(120.0, rel=0.02) and on(found, beats) > 0.9
-
-
-def test_nesting_keeps_beats_that_carry_half_their_tempo() -> None:
-    local = np.zeros(400)
-    local[np.arange(15, 400, 30)] = 1.0  # peaks on the off-beats of a 30-frame grid
-    on_grid, off_grid = np.arange(0, 400, 30), np.arange(15, 400, 30)
-    # nested: the half tempo's beats are among the chosen ones, whatever the envelope says
-    assert np.array_equal(_nested(local, on_grid, on_grid[::2], 30.0), on_grid)
-    # not nested, and the envelope peaks at the chosen beats: they stay
-    assert np.array_equal(_nested(local, off_grid, on_grid[::2], 30.0), off_grid)
-    # not nested, and the envelope peaks at the half tempo's beats: they and their midpoints win
-    half = off_grid[::2]
-    assert np.array_equal(_nested(local, on_grid, half, 30.0), off_grid[: 2 * len(half) - 1])
 
 
 def test_track_is_deterministic() -> None:

@@ -24,10 +24,6 @@ Programming", J. New Music Research 36(1)) at the metrical level a listener taps
    one and back, each change costing `SWITCH_BEATS` typical beats. A beat in a state
    counts its period's share to the power 1 - `FIT_COUNT_POWER` (as the fit of step 3
    weighs levels), so a faster state does not win by having more beats.
-6. Nesting: a listener's beats carry the beats of half the tempo. When fewer than half
-   of the half tempo's tracked beats lie within a quarter period of the chosen beats,
-   the two disagree on the phase; the half tempo's beats with the midpoints between
-   them replace the chosen beats if the envelope peaks near them are stronger.
 """
 
 from __future__ import annotations
@@ -82,12 +78,6 @@ SWITCH_BEATS = 8.0
 """A tempo change costs as much as this many typical beats (tuning set: 4 let steady
 songs wander to a relative for a few bars, 12 no longer followed supertux-classic's
 change from 125 to 94 BPM; docs/beats.md)."""
-
-NESTED_MIN = 0.5
-"""Step 6: below this share of the half tempo's beats near the chosen beats, the two disagree
-on the phase."""
-NEAR_FRAMES = 2
-"""Step 6 compares the envelope's peaks within this many frames of each beat."""
 
 HEARD = 0.1
 """The music is heard from the first frame whose onset envelope reaches this share of
@@ -219,74 +209,28 @@ def track(
         return math.nan, np.zeros(0)
     local = _normalised(envelope)
     mean = float(local.mean())
-    tracked: dict[float, npt.NDArray[np.int64]] = {}
-    best: tuple[float, float] | None = None
+    best: tuple[float, float, npt.NDArray[np.float64]] | None = None
     for tempo in candidates:
         frames = _beat_frames(local, 60.0 * fps / tempo, fps)
         if len(frames) < 2:
             continue
-        tracked[tempo] = frames
         fit = _fit(local, frames) / mean * tempo_prior(tempo)
         if best is None or fit > best[0]:
-            best = (fit, tempo)
+            best = (fit, tempo, frames.astype(np.float64) / fps)
     if best is None:
         return math.nan, np.zeros(0)
     tempo = best[1]
-    frames = _with_changes(local, fps, tempo, tracked[tempo], candidates)
-    half = next((f for t, f in tracked.items() if abs(2.0 * t / tempo - 1.0) < 0.03), None)
-    if half is not None:
-        frames = _nested(local, frames, half, 60.0 * fps / tempo)
-    return tempo, frames.astype(np.float64) / fps
-
-
-def _with_changes(
-    local: npt.NDArray[np.float64],
-    fps: float,
-    tempo: float,
-    frames: npt.NDArray[np.int64],
-    candidates: list[float],
-) -> npt.NDArray[np.int64]:
-    """The beat frames at ``tempo`` free to change to its 3:4, 4:3, 2:3 or 3:2 relatives.
-
-    ``frames`` (the fixed-tempo beats) are kept when no relative is a candidate, or when
-    the changes take over the song (the beats' median interval off the tempo by > 3 %).
-    """
     others = tuple(
         60.0 * fps / c for c in candidates if any(abs(c / tempo / r - 1.0) < 0.03 for r in _CHANGES)
     )
     if not others:
-        return frames
+        return tempo, best[2]
     period = 60.0 * fps / tempo
-    typical = float(_smoothed(local, period)[frames].mean())
-    changed = _beat_frames(local, period, fps, others, SWITCH_BEATS * typical)
-    if len(changed) < 2 or abs(float(np.median(np.diff(changed))) / period - 1) > 0.03:
-        return frames
-    return changed
-
-
-def _nested(
-    local: npt.NDArray[np.float64],
-    frames: npt.NDArray[np.int64],
-    half: npt.NDArray[np.int64],
-    period: float,
-) -> npt.NDArray[np.int64]:
-    """``frames``, or the half tempo's beats ``half`` with their midpoints (step 6).
-
-    The latter only when fewer than `NESTED_MIN` of ``half`` lie within a quarter period
-    of ``frames`` and the envelope's peaks near them (±`NEAR_FRAMES`) are stronger on
-    average.
-    """
-    nearest = np.clip(np.searchsorted(frames, half), 1, len(frames) - 1)
-    distance = np.minimum(np.abs(half - frames[nearest - 1]), np.abs(frames[nearest] - half))
-    if np.mean(distance <= period / 4.0) >= NESTED_MIN or len(half) < 2:
-        return frames
-    between = np.empty(2 * len(half) - 1, dtype=np.int64)
-    between[0::2] = half
-    between[1::2] = (half[:-1] + half[1:]) // 2
-    import scipy.ndimage  # here, as in `_comb`
-
-    peaks = scipy.ndimage.maximum_filter1d(local, 2 * NEAR_FRAMES + 1, mode="nearest")
-    return between if peaks[between].mean() > peaks[frames].mean() else frames
+    typical = float(_smoothed(local, period)[np.round(best[2] * fps).astype(np.int64)].mean())
+    frames = _beat_frames(local, period, fps, others, SWITCH_BEATS * typical)
+    if len(frames) < 2 or abs(float(np.median(np.diff(frames))) * tempo / (60.0 * fps) - 1) > 0.03:
+        return tempo, best[2]  # the changes took over the song: keep the tempo the fit chose
+    return tempo, frames.astype(np.float64) / fps
 
 
 def _fit(local: npt.NDArray[np.float64], frames: npt.NDArray[np.int64]) -> float:
