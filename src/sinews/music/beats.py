@@ -67,7 +67,7 @@ _RELATIVES = (1.0, 0.5, 2.0, 2.0 / 3.0, 1.5, 0.75, 4.0 / 3.0, 0.25, 4.0, 1.0 / 3
 """Tempo ratios tried against the strongest autocorrelation period."""
 FIT_COUNT_POWER = 0.2
 """A candidate's fit is its beats' mean envelope times their count to this power (0.25 until
-ANALYSIS_VERSION 5: it put 18 of 126 corpus songs at double the reference tempo; docs/beats.md)."""
+ANALYSIS_VERSION 5: it put 19 of 126 corpus songs at double the reference tempo; docs/beats.md)."""
 _REFINE = 0.06
 """A relative's period is refined to the autocorrelation peak within this fraction."""
 
