@@ -27,10 +27,11 @@ SNAKE = {"population": "5", "generations": "500", "seconds": "20", "seed": "7"}
 """The longest snake run the form starts (its most generations, of its longest trials): minutes
 of evolving, so the page watches it run and its server is killed long before it ends."""
 LATEST = (
-    "figures.run.job && figures.run.job.running && figures.pack"
-    " && figures.shown === figures.run.generations - 1"
+    "figures.run?.job?.running && figures.pack && figures.shown === figures.run.generations - 1"
 )
-"""JS: the page shows the newest stored generation (as of its last poll) while the job runs."""
+"""JS: the page shows the newest stored generation (as of its last poll) while the job runs.
+Right after the start message the page has no run yet (`figures.run` is null until the run
+list is refreshed), hence the `?.`."""
 WATCHED = """() => ({
   shown: figures.shown,
   title: document.getElementById("stage-title").textContent,
