@@ -1,6 +1,6 @@
 """How well dancers follow real music: beat lift against REFERENCE beats, smoothness, stretch.
 
-    .venv/bin/python benchmarks/dancers/evaluate.py [--set tune|heldout|all] [--dancers 16]
+    .venv/bin/python benchmarks/dancers/evaluate.py [--set SET|all] [--dancers 16]
         [--seconds 50] [--genome-seed 1] [--evolve N] [--only ID ...] [--json OUT]
 
 Uses the beat corpus of benchmarks/beats/ (audio: `python3 benchmarks/beats/fetch.py`;
@@ -40,7 +40,7 @@ HERE = Path(__file__).resolve().parent
 BEATS = HERE.parent / "beats"
 sys.path.insert(0, str(BEATS))
 
-from fetch import default_cache, excerpt_path, load_corpus  # noqa: E402
+from fetch import SETS, default_cache, excerpt_path, load_corpus  # noqa: E402
 
 STRETCH_LIMIT = 1.5
 TRUNK = ("neck", "chest", "belly", "pelvis", "l_hip", "r_hip")
@@ -122,7 +122,7 @@ def main() -> None:
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cache", type=Path, default=default_cache())
-    parser.add_argument("--set", default="tune", choices=("tune", "heldout", "all"))
+    parser.add_argument("--set", default="tune", choices=(*SETS, "all"))
     parser.add_argument("--dancers", type=int, default=16)
     parser.add_argument("--seconds", type=float, default=50.0)
     parser.add_argument("--genome-seed", type=int, default=1)
