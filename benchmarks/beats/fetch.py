@@ -86,8 +86,10 @@ def fetch(cache: Path) -> None:
 
 
 def _source(tree: Path, file: str) -> Path:
-    """The file to cut: ``PATH`` in the package tree, or ``ARCHIVE!MEMBER`` (a zip such as a
-    .pk3) extracted next to its archive once."""
+    """The file to cut: ``PATH`` in the package tree, or ``ARCHIVE!MEMBER`` of a zip (a .pk3).
+
+    A member is extracted once, next to its archive.
+    """
     if "!" not in file:
         return tree / file
     archive, member = file.split("!", 1)

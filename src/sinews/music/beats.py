@@ -10,7 +10,7 @@ Programming", J. New Music Research 36(1)) at the metrical level a listener taps
    each refined to its own nearest autocorrelation peak.
 3. Each candidate is tracked (step 4) and scored by how strongly its beats land on
    onsets: the mean of the normalised envelope at the beats, over its mean everywhere,
-   times the number of beats to the power 0.2 (`_fit`), times a tempo prior that is
+   times the number of beats to `FIT_COUNT_POWER` (`_fit`), times a tempo prior that is
    flat over 90-180 BPM (where listeners tap) and falls off as a Gaussian (sigma 0.3
    octave) outside. The best candidate is the tempo.
 4. Beats: the beat sequence maximising the (Gaussian-smoothed) envelope at the beats
