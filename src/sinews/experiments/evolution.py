@@ -148,6 +148,22 @@ class Strategies:
         return restored
 
 
+def _columns(
+    terms: npt.NDArray[np.float64], names: Sequence[str], wanted: Sequence[str]
+) -> npt.NDArray[np.float64]:
+    """(P, len(wanted)) the columns of ``terms`` (columns ``names``) that the spec weighs.
+
+    A figure's task may gain a term that a run stored before it does not weigh; the run
+    goes on rated by its own terms.
+    """
+    missing = [name for name in wanted if name not in names]
+    if missing:
+        raise SinewsError(f"the scorer does not measure {missing[0]!r}, which the run weighs")
+    if tuple(names) == tuple(wanted):
+        return terms
+    return np.ascontiguousarray(terms[:, [list(names).index(name) for name in wanted]])
+
+
 def _tell(
     strategy: AskTell[Any], fitness: npt.NDArray[np.float64] | None, picks: list[int]
 ) -> None:
@@ -210,7 +226,8 @@ def advance(
             raise SinewsError("scoring needs a fitness spec")
         scores = scorer(genomes, seeds)
         failed = scores.failed
-        total = spec.combine(scores.terms, failed, generation)
+        weighed = _columns(scores.terms, scorer.term_names, spec.names)
+        total = spec.combine(weighed, failed, generation)
         record = dataclasses.replace(
             record,
             fitness=total,

@@ -121,7 +121,9 @@ def luxo3d_hop(target: Sequence[float] = (1.0, 0.5), *, seconds: float = 5.0) ->
 
     The lamp starts facing +x, so a target off the axis means turning as well
     as hopping. The main goal is the base centre's distance from the X on the
-    floor at the end (`RESTING`); style as the planar lamp's (`STYLE`).
+    floor at the end (`RESTING`); style as the planar lamp's (`STYLE`), and ``spot``
+    (the mean distance from the X over the trial: how soon it gets there) at weight 0
+    unless a run file weighs it (docs/figures3d.md).
     """
     x, y = _check_floor_target("luxo3d-hop", target)
     lamp = luxo3d()
@@ -130,8 +132,8 @@ def luxo3d_hop(target: Sequence[float] = (1.0, 0.5), *, seconds: float = 5.0) ->
     assert world is not None
     _floor_mark(world, x, y)
     figure = _refigure(lamp, root, sites=("target",))
-    return _lamp_task("luxo3d-hop", figure, (x, y), {"distance": 1.0, **STYLE}, seconds,
-                      {"target": [x, y]})  # fmt: skip
+    return _lamp_task("luxo3d-hop", figure, (x, y), {"distance": 1.0, **STYLE, "spot": 0.0},
+                      seconds, {"target": [x, y]})  # fmt: skip
 
 
 LIMBO3D_SHARE = 0.8

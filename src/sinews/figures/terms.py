@@ -45,7 +45,7 @@ A dance's terms (they need the song's beat times, ``TaskMeter(..., beats=...)``)
   beats than on the same beats at other phases. About 0 for motion that ignores
   the beat, however it moves.
 - ``spot``: minus the mean distance of the tracked point from the goal over the
-  trial, m ("stay near a spot").
+  trial, m: a dance's "stay near a spot", a hop's "get there soon".
 - ``joints``: minus the mean shortfall of each driven joint's swing (the standard
   deviation of its angle) below `JOINT_SWING`, as a share of it ("use all joints").
 - ``smooth``: the driven joints' `sinews.music.beat_align.smoothness` minus 1.
