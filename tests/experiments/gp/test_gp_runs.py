@@ -20,6 +20,7 @@ from sinews.evolve import SerialEvaluator
 from sinews.experiments.evolution import GenerationSummary
 from sinews.experiments.gp.run import KIND as EXPERIMENT
 from sinews.experiments.gp.run import _summary
+from sinews.experiments.run_config import EvolutionConfig
 from sinews.figures.tasks import make_task
 from sinews.store import RunStore
 
@@ -113,3 +114,27 @@ def test_a_held_goal_says_it_is_held() -> None:
     )
     assert _summary(nose, np.array([-0.012])) == "0.012 m from the goal at most over the last 0.5 s"
     assert _summary(hop, np.array([-0.2])) == "0.200 m from the goal"
+
+
+def test_a_run_stored_before_its_task_gained_a_term_goes_on_rated_by_its_own(
+    tmp_path: Path,
+) -> None:
+    """luxo3d-hop gained ``spot``; a hop run stored without it resumes, rated as before."""
+    options = {**OPTIONS, "target": "0.6,0.3", "population": 4, "generations": 2,
+               "seconds": 0.2}  # fmt: skip
+    with RunStore(tmp_path / "runs.db") as store:
+        run = EXPERIMENT.create_run(store, subject="luxo3d", file_values={}, options=options)
+        config = dict(store.run(run).config)
+        fitness = dict(config["fitness"])
+        assert fitness["weights"]["spot"] == 0.0
+        fitness["weights"] = {k: v for k, v in fitness["weights"].items() if k != "spot"}
+        store.update_config(run, {**config, "fitness": fitness})
+        EXPERIMENT.run(store, run, evaluator=SerialEvaluator())
+        table = store.scores(run)
+        spec = EvolutionConfig.from_dict(store.run(run).config).fitness
+    assert "spot" not in spec.names and "spot" in table.terms[0]
+    terms = np.array([[t[name] for name in spec.names] for t in table.terms])
+    for generation in range(2):
+        rows = table.generation == generation
+        combined = spec.combine(terms[rows], table.failed[rows], generation)
+        np.testing.assert_array_equal(table.fitness[rows], combined)
