@@ -63,6 +63,8 @@ def test_out_of_turn_calls_are_refused() -> None:
         {"tweak_rate": -0.1},
         {"tweak_scale": 0.0},
         {"tweak_scale": float("nan")},
+        {"soft_share": 1.5},
+        {"soft_share": -0.1},
     ],
 )
 def test_bad_options_are_refused(options: dict[str, object]) -> None:
@@ -182,6 +184,38 @@ def test_selection_favours_the_fit_and_never_picks_the_failed() -> None:
     assert (tournament_select(np.zeros(4), 50, size=4, rng=rng) <= 3).all()
     uniform = proportionate(np.full(4, -np.inf), 1000, rng=rng)
     assert set(uniform.tolist()) == {0, 1, 2, 3}
+
+
+def test_stochastic_ranking_judges_a_share_of_tournaments_by_the_soft_sums() -> None:
+    fitness = np.array([0.0, -1.0, -2.0, -3.0])  # the constraints ranked: 0 first
+    soft = np.array([-3.0, -2.0, -1.0, 0.0])  # the weighted sums alone: 3 first
+    by_fitness = tournament_select(fitness, 1000, size=4, rng=np.random.default_rng(1))
+    by_soft = tournament_select(soft, 1000, size=4, rng=np.random.default_rng(1))
+    for share, expected in ((0.0, by_fitness), (1.0, by_soft)):
+        rng = np.random.default_rng(1)
+        chosen = tournament_select(fitness, 1000, size=4, rng=rng, soft=soft, soft_share=share)
+        np.testing.assert_array_equal(chosen, expected)
+    mixed = tournament_select(fitness, 10_000, size=4, rng=np.random.default_rng(2), soft=soft,
+                              soft_share=0.45)  # fmt: skip
+    wins = np.bincount(mixed, minlength=4) / 10_000
+    present = 1 - (3 / 4) ** 4  # the chance a contestant is drawn into a tournament
+    np.testing.assert_allclose(wins[[0, 3]], [0.55 * present, 0.45 * present], atol=0.02)
+
+
+def test_soft_sums_steer_breeding_and_survive_a_checkpoint() -> None:
+    runs = []
+    for share in (0.0, 0.5):
+        gp = _strategy(3, soft_share=share)
+        programs = gp.ask()
+        gp.tell(_score(programs), soft=-_score(programs))
+        data = gp.to_bytes()
+        assert json.loads(data)["soft"] is not None
+        restored = GPStrategy.from_bytes(data)
+        assert restored.to_bytes() == data and restored.ask() == gp.ask()
+        runs.append(gp.population)
+    assert runs[0] != runs[1]
+    with pytest.raises(ValueError):
+        _strategy(soft_share=0.5).tell(np.zeros(20), soft=np.zeros(3))
 
 
 @pytest.mark.parametrize("told", [False, True])

@@ -160,18 +160,30 @@ class FitnessSpec:
             less). Computed over the rows given: one generation to breed it, a
             whole run to find its best (a clean one if it has any).
         """
-        weights = np.array(list(self.weights_at(generation).values()))
-        with np.errstate(invalid="ignore", over="ignore"):
-            total = terms @ weights
-        bad = failed | np.isnan(terms).any(axis=1) | ~np.isfinite(total)
-        total = np.where(bad, WORST_FITNESS, total)
-        if not self.constraints or generation < self.constraints_start:
+        total = self.weighted(terms, failed, generation)
+        if not self.ranks_constraints(generation):
             return total
+        bad = total == WORST_FITNESS
         columns = [self.names.index(name) for name in self.constraints]
         loss = -np.minimum(terms[:, columns], 0.0).sum(axis=1)
         kept = ~bad & (loss == 0)
         floor = total[kept].min() if kept.any() else 0.0
         return np.where(bad | kept, total, floor - loss)
+
+    def ranks_constraints(self, generation: int) -> bool:
+        """Whether `combine` ranks the constraints at ``generation``."""
+        return bool(self.constraints) and generation >= self.constraints_start
+
+    def weighted(
+        self, terms: npt.NDArray[np.float64], failed: npt.NDArray[np.bool_], generation: int
+    ) -> npt.NDArray[np.float64]:
+        """(P,) the weighted sums of `combine`, the constraints not ranked (`WORST_FITNESS`
+        where failed or any term is NaN)."""
+        weights = np.array(list(self.weights_at(generation).values()))
+        with np.errstate(invalid="ignore", over="ignore"):
+            total = terms @ weights
+        bad = failed | np.isnan(terms).any(axis=1) | ~np.isfinite(total)
+        return np.where(bad, WORST_FITNESS, total)
 
     def to_dict(self) -> dict[str, Any]:
         """A JSON/TOML-safe description (see `from_dict`); ``constraints`` only if any."""

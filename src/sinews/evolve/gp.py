@@ -57,7 +57,7 @@ from sinews.control.gp import (
     tweak_constants,
     within_limits,
 )
-from sinews.evolve._state import decode_rng, encode_rng
+from sinews.evolve._state import decode_array, decode_rng, encode_array, encode_rng
 from sinews.evolve.errors import StrategyError
 from sinews.evolve.strategy import AskTell, GenomeSpace
 
@@ -89,6 +89,9 @@ class GPVariation:
         mutation_depth: depth limit of a mutation's new subtree.
         max_copies: the most times one program may stand in a generation, as
             a share of the population (at least once); 1.0 turns the guard off.
+        soft_share: stochastic ranking (Runarsson & Yao 2000; not the paper's): the
+            share of tournaments won by the weighted sum alone (``tell``'s ``soft``),
+            the others by the fitness, which ranks the constraints; 0 by default.
     """
 
     crossover_rate: float = 0.9
@@ -104,6 +107,7 @@ class GPVariation:
     init_depth: tuple[int, int] = (2, 6)
     mutation_depth: int = 4
     max_copies: float = 0.05
+    soft_share: float = 0.0
 
     def __post_init__(self) -> None:
         for option in dataclasses.fields(self):  # a run file's values, as their types say
@@ -131,6 +135,8 @@ class GPVariation:
             )
         if self.tournament_size < 1 or self.elites < 0 or self.mutation_depth < 0:
             raise StrategyError("tournament_size must be >= 1, elites and mutation_depth >= 0")
+        if not 0 <= self.soft_share <= 1:
+            raise StrategyError(f"soft_share must be in [0, 1], got {self.soft_share}")
         if not 0 < self.max_copies <= 1:
             raise StrategyError(f"max_copies must be in (0, 1], got {self.max_copies}")
         if not 0 <= low <= high <= self.max_depth:
@@ -147,11 +153,24 @@ class GPVariation:
 
 
 def tournament_select(
-    fitness: FloatArray, count: int, *, size: int, rng: np.random.Generator
+    fitness: FloatArray,
+    count: int,
+    *,
+    size: int,
+    rng: np.random.Generator,
+    soft: FloatArray | None = None,
+    soft_share: float = 0.0,
 ) -> IntArray:
-    """``count`` winners of tournaments of ``size`` random contestants (ties: lowest index)."""
+    """``count`` winners of tournaments of ``size`` random contestants (ties: lowest index).
+
+    With ``soft`` and ``soft_share`` > 0, each tournament is judged by ``soft`` with that
+    probability (stochastic ranking), else by ``fitness``.
+    """
     contestants = rng.integers(0, len(fitness), size=(count, size))
     values = fitness[contestants]
+    if soft is not None and soft_share > 0:
+        by_soft = rng.random(count) < soft_share
+        values = np.where(by_soft[:, None], soft[contestants], values)
     winners = values == values.max(axis=1, keepdims=True)
     return np.where(winners, contestants, len(fitness)).min(axis=1).astype(np.int64)
 
@@ -183,12 +202,13 @@ class GPStrategy(AskTell[list[Program]]):
 
     Attributes:
         name: ``"gp"`` in checkpoints.
-        takes: ``tell`` takes fitness and (optionally) a person's picks.
+        takes: ``tell`` takes fitness, (optionally) a person's picks, and the
+            weighted sums without the constraints ranked (``soft``).
         codec: the genome codec of `encode` and `genomes`.
     """
 
     name = "gp"
-    takes = ("fitness", "picks")
+    takes = ("fitness", "picks", "soft")
     codec = GENOME_CODEC
 
     def __init__(
@@ -201,6 +221,7 @@ class GPStrategy(AskTell[list[Program]]):
         variation: GPVariation | None = None,
     ) -> None:
         super().__init__(population_size=population_size, rng=rng)
+        self._soft: FloatArray | None = None
         if n_trees < 1:
             raise StrategyError(f"n_trees must be at least 1, got {n_trees}")
         self.pset = pset
@@ -214,17 +235,23 @@ class GPStrategy(AskTell[list[Program]]):
         """The last population asked for."""
         return tuple(self._asked())
 
-    def tell(self, fitness: npt.ArrayLike, picks: npt.ArrayLike = ()) -> None:
+    def tell(
+        self, fitness: npt.ArrayLike, picks: npt.ArrayLike = (), soft: npt.ArrayLike | None = None
+    ) -> None:
         """Judge the last population.
 
         Args:
             fitness: (P,) higher is better; NaN or -inf is the worst.
             picks: (K,) indices a person picked: the parents of the next crossovers.
+            soft: (P,) the weighted sums without the constraints ranked, for
+                ``soft_share`` (None: the same as ``fitness``).
 
         Raises:
             StrategyError: out of turn, wrong shape, not numbers, +inf, or bad picks.
         """
+        checked = None if soft is None else self._check_fitness(soft)
         self._record_tell(fitness=fitness, picks=picks)
+        self._soft = checked
 
     def _first(self) -> list[Program]:
         low, high = self.variation.init_depth
@@ -237,7 +264,8 @@ class GPStrategy(AskTell[list[Program]]):
         assert self._fitness is not None
         v = self.variation
         if v.selection == "tournament":
-            return tournament_select(self._fitness, count, size=v.tournament_size, rng=self.rng)
+            return tournament_select(self._fitness, count, size=v.tournament_size, rng=self.rng,
+                                     soft=self._soft, soft_share=v.soft_share)  # fmt: skip
         return proportionate(self._fitness, count, rng=self.rng)
 
     def _breed(self) -> tuple[list[Program], IntArray]:
@@ -343,6 +371,13 @@ class GPStrategy(AskTell[list[Program]]):
             "rng": encode_rng(self.rng),
         }
 
+    def to_state(self) -> dict[str, Any]:
+        """`AskTell.to_state`, and once told, the ``soft`` sums if given."""
+        state = super().to_state()
+        if self._told and self._soft is not None:
+            state["soft"] = encode_array(self._soft)
+        return state
+
     def _encode_population(self, population: list[Program]) -> list[str]:
         return self.genomes(population)
 
@@ -394,6 +429,8 @@ class GPStrategy(AskTell[list[Program]]):
                 variation=GPVariation(**state["options"]),
             )
             strategy._restore_cycle(state)
+            if state.get("soft") is not None:
+                strategy._soft = strategy._check_fitness(decode_array(state["soft"], "soft"))
         except (KeyError, TypeError, ValueError, GPError):
             raise StrategyError("malformed GP strategy checkpoint") from None
         return strategy

@@ -164,14 +164,31 @@ def _columns(
     return np.ascontiguousarray(terms[:, [list(names).index(name) for name in wanted]])
 
 
+def _soft(
+    store: RunStore, run_id: int, generation: int, spec: FitnessSpec | None
+) -> npt.NDArray[np.float64] | None:
+    """(P,) ``generation``'s weighted sums without the constraints ranked, from its stored
+    terms; None where they are its fitness (no constraints ranked then)."""
+    if spec is None or not spec.ranks_constraints(generation):
+        return None
+    people = store.individuals(run_id, generation)
+    terms = _stored([p.terms or {} for p in people], spec)
+    return spec.weighted(terms, np.array([p.failed for p in people], dtype=bool), generation)
+
+
 def _tell(
-    strategy: AskTell[Any], fitness: npt.NDArray[np.float64] | None, picks: list[int]
+    strategy: AskTell[Any],
+    fitness: npt.NDArray[np.float64] | None,
+    picks: list[int],
+    soft: npt.NDArray[np.float64] | None = None,
 ) -> None:
     told: dict[str, Any] = {}
     if "fitness" in strategy.takes:
         if fitness is None:
             raise SinewsError("this generation was not scored, so the strategy cannot be told")
         told["fitness"] = fitness
+    if "soft" in strategy.takes and soft is not None:
+        told["soft"] = soft
     if "picks" in strategy.takes:
         told["picks"] = picks
     elif picks:
@@ -207,7 +224,8 @@ def advance(
     info = store.run(run_id)
     last = store.last_generation(run_id)
     if last >= 0:
-        _tell(strategy, store.generation_fitness(run_id, last), list(picks or []))
+        soft = _soft(store, run_id, last, spec) if "soft" in strategy.takes else None
+        _tell(strategy, store.generation_fitness(run_id, last), list(picks or []), soft)
     genomes = strategy.genomes(strategy.ask())
     checkpoint = strategy.to_bytes()
     generation = last + 1
@@ -388,11 +406,17 @@ def full_weight_fitness(
     terms: Sequence[Mapping[str, float | None]], failed: npt.ArrayLike, spec: FitnessSpec
 ) -> npt.NDArray[np.float64]:
     """(n,) the fitness of stored term values at full style weight (-inf: failed or missing)."""
-    values = np.array(
+    return spec.combine(_stored(terms, spec), np.asarray(failed, dtype=bool), spec.final)
+
+
+def _stored(
+    terms: Sequence[Mapping[str, float | None]], spec: FitnessSpec
+) -> npt.NDArray[np.float64]:
+    """(n, K) stored term values as `FitnessSpec.combine` takes them (NaN: missing)."""
+    return np.array(
         [[np.nan if t.get(name) is None else t[name] for name in spec.names] for t in terms],
         dtype=np.float64,
     ).reshape(len(terms), len(spec.names))
-    return spec.combine(values, np.asarray(failed, dtype=bool), spec.final)
 
 
 def full_weight_bests(table: ScoreTable, spec: FitnessSpec) -> npt.NDArray[np.float64]:

@@ -17,7 +17,7 @@ pytest.importorskip("mujoco")
 
 from sinews.cli import main
 from sinews.evolve import SerialEvaluator
-from sinews.experiments.evolution import GenerationSummary
+from sinews.experiments.evolution import GenerationSummary, _soft
 from sinews.experiments.gp.run import KIND as EXPERIMENT
 from sinews.experiments.gp.run import _summary
 from sinews.experiments.run_config import EvolutionConfig
@@ -138,3 +138,33 @@ def test_a_run_stored_before_its_task_gained_a_term_goes_on_rated_by_its_own(
         rows = table.generation == generation
         combined = spec.combine(terms[rows], table.failed[rows], generation)
         np.testing.assert_array_equal(table.fitness[rows], combined)
+
+
+def test_soft_breeding_is_told_the_weighted_sums_and_resumes_bit_for_bit(
+    whole: Path, tmp_path: Path
+) -> None:
+    """Stochastic ranking (``soft_share``) with the constraints from generation 0: the
+    strategy hears each generation's sums without the ranking; a cut run resumes."""
+    config = tmp_path / "soft.toml"
+    config.write_text('constraints = ["head", "fallen"]\nphase_in = { start = 0, full = 7 }\n'
+                      '[strategy]\nname = "gp"\nsoft_share = 0.5\n')  # fmt: skip
+    soft, cut = tmp_path / "soft.db", tmp_path / "cut.db"
+    assert main([*arguments(), "--config", str(config), "--db", str(soft)]) == 0
+    assert main([*arguments(generations=3), "--config", str(config), "--db", str(cut)]) == 0
+    assert main(["runs", "resume", "1", "--generations", "8", "--db", str(cut)]) == 0
+    assert stored(cut) == stored(soft) != stored(whole)
+    with RunStore(soft) as store:
+        spec = EvolutionConfig.from_dict(store.run(1).config).fitness
+        table = store.scores(1)
+        told = [_soft(store, 1, g, spec) for g in range(8)]
+    ranked = [g for g, sums in enumerate(told) if sums is not None]
+    assert ranked == list(range(8))
+    faulty_all = np.array([(t["head"] or 0) < 0 or (t["fallen"] or 0) < 0 for t in table.terms])
+    reordered = 0
+    for g, sums in enumerate(told):
+        assert sums is not None
+        fitness, faulty = table.fitness[table.generation == g], faulty_all[table.generation == g]
+        np.testing.assert_array_equal(sums[~faulty], fitness[~faulty])  # the clean: the same
+        assert fitness[faulty].max(initial=-np.inf) < fitness[~faulty].min(initial=np.inf)
+        reordered += sums[faulty].max(initial=-np.inf) > sums[~faulty].min(initial=np.inf)
+    assert reordered  # the sums put a faulty program above a clean one
