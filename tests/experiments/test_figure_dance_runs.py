@@ -66,11 +66,13 @@ def sinews(*args: str) -> subprocess.CompletedProcess[str]:
 
 @pytest.fixture(scope="module")
 def dance(request: pytest.FixtureRequest, folder: Path) -> tuple[str, str, Path]:
-    """(controller, figure, its database) of an uninterrupted dance run."""
+    """(controller, figure, its database) of an uninterrupted dance run, made once per folder
+    (pytest-xdist may set this fixture up again for a case it already made)."""
     controller, figure = request.param
     db = f"{controller}-{figure}.db"
-    done = sinews(*arguments(folder, controller, figure, db))
-    assert done.returncode == 0, done.stderr[-2000:]
+    if not (folder / db).exists():
+        done = sinews(*arguments(folder, controller, figure, db))
+        assert done.returncode == 0, done.stderr[-2000:]
     return controller, figure, folder / db
 
 

@@ -19,6 +19,9 @@ import pytest
 from figure_page_helpers import GP, SPRINGNET, copy_of, sinews
 from studio_helpers import CHROMIUM, CHROMIUM_ARGS, StudioServer
 
+LIVENESS_MS = 60_000
+"""How long a page action or `expect` waits before failing (Playwright's defaults: 30 s, 5 s)."""
+
 
 @pytest.fixture(scope="session")
 def studio_env(tmp_path_factory: pytest.TempPathFactory) -> dict[str, str]:
@@ -101,7 +104,13 @@ def page(browser: Any) -> Iterator[Any]:
 
     Refused requests (4xx, which the page reports as one-line messages) are expected.
     """
+    from playwright.sync_api import expect
+
+    # Liveness bounds, not timing claims: the suite runs one worker per core, so a page may
+    # wait while the other worker compiles or simulates.
+    expect.set_options(timeout=LIVENESS_MS)
     context = browser.new_context(viewport={"width": 1600, "height": 1000}, accept_downloads=True)
+    context.set_default_timeout(LIVENESS_MS)
     page = context.new_page()
     errors: list[str] = []
     page.on("pageerror", lambda error: errors.append(str(error)))

@@ -16,8 +16,8 @@ from sinews.studio.app import create_app
 from sinews.studio.scene_live import HEAD_FLOATS
 from sinews.studio.scene_socket import MAX_LIVE_SCENES, MAX_STROKE_POINTS
 from sinews.studio.service import StudioSettings, Worker
+from studio_helpers import HOME
 
-HOME = "http://127.0.0.1:8765"
 SCENES = "ws://127.0.0.1:8765/api/scenes/"
 
 

@@ -16,9 +16,8 @@ from starlette.websockets import WebSocketDisconnect
 from sinews.studio.app import create_app
 from sinews.studio.service import StudioSettings, Worker
 from sinews.studio.songs import MAX_UPLOAD_BYTES
-from studio_helpers import DATA, decode_pack, in_process_studio, worker_of
+from studio_helpers import DATA, HOME, decode_pack, in_process_studio, worker_of
 
-HOME = "http://127.0.0.1:8765"
 JSON = {"Content-Type": "application/json"}
 LIVE = "ws://127.0.0.1:8765/api/live"
 

@@ -18,7 +18,6 @@ from starlette.testclient import TestClient
 
 from studio_helpers import in_process_studio
 
-HOME = "http://127.0.0.1:8765"
 FUZZ = settings(
     max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
 )
