@@ -8,7 +8,8 @@
 2. Levels in dB relative to the song's loudness reference, the 99th
    percentile of all its band levels, so that mastering loudness cancels out.
 3. Per-band onsets and adaptive triggers (`onsets`); the onsets pooled by register are the
-   envelope that tempo and beats are tracked on (`beats`).
+   envelope that tempo and beats are tracked on (`beats`), and the registers then decide
+   whether the beats or their midpoints are the beat (`beats.settle_phase`).
 """
 
 from __future__ import annotations
@@ -24,7 +25,7 @@ import numpy as np
 import numpy.typing as npt
 
 from sinews.limits import check_number
-from sinews.music.beats import beat_phase, onset_envelope, track
+from sinews.music.beats import beat_phase, onset_envelope, settle_phase, track
 from sinews.music.decode import Audio, check_readable_file, load_audio
 from sinews.music.errors import AudioError
 from sinews.music.features import ANALYSIS_VERSION, MusicFeatures
@@ -121,7 +122,9 @@ def analyse(
     onset_levels = _relative(onset_abs, reference, ONSET_FLOOR_DB, silent)
     onset = onset_strength(onset_levels, fps)
     triggers = adaptive_triggers(onset, onset_levels, fps, _TRIGGERS)
-    tempo, beats = track(onset_envelope(onset, band_centres(edges)), fps, bpm)
+    centres = band_centres(edges)
+    tempo, beats = track(onset_envelope(onset, centres), fps, bpm)
+    beats = settle_phase(beats, onset, centres, fps)
     tempo = tempo if math.isfinite(tempo) else 0.0
     return MusicFeatures(
         fps=float(fps),
