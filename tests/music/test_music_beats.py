@@ -146,10 +146,10 @@ def test_beats_between_the_onsets_move_onto_them() -> None:
     assert settle_phase(onsets, onset, REGISTER_CENTRES, FPS) is onsets
 
 
-def test_too_few_beats_or_beats_outside_the_song_keep_their_phase() -> None:
+def test_too_few_beats_keep_their_phase() -> None:
     onset = _onsets_at(np.array([0.75, 1.25]), 3.0)
-    for beats in (np.array([0.5, 1.0]), np.array([10.0, 10.5, 11.0, 11.5])):
-        assert settle_phase(beats, onset, REGISTER_CENTRES, FPS) is beats
+    beats = np.array([0.5, 1.0])
+    assert settle_phase(beats, onset, REGISTER_CENTRES, FPS) is beats
 
 
 def test_no_beats_over_a_silent_intro(groove_audio: Audio) -> None:

@@ -288,8 +288,7 @@ def phase_evidence(
 
     An envelope's strength at a set of times is the mean, over the times, of its peak
     (above its minimum) within `PHASE_REACH_S`; the evidence is log(strength at the beats /
-    strength at the midpoints), so it changes sign when the two are swapped; NaN where
-    no beat or no midpoint falls inside the envelopes.
+    strength at the midpoints), so it changes sign when the two are swapped.
     """
     midpoints = (beats[:-1] + beats[1:]) / 2.0
     reach = max(1, round(PHASE_REACH_S * fps))
@@ -299,8 +298,6 @@ def phase_evidence(
     def strength(times: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
         frames = np.round(times * fps).astype(np.int64)
         frames = frames[(frames >= 0) & (frames <= last)]
-        if len(frames) == 0:
-            return np.full(lifted.shape[1], np.nan)
         peaks = np.stack(
             [lifted[np.clip(frames + k, 0, last)] for k in range(-reach, reach + 1)]
         ).max(axis=0)
@@ -338,9 +335,9 @@ def settle_phase(
             onset_envelope(onset),
         ]
     )
-    if float(phase_evidence(beats, envelopes, fps) @ np.array(PHASE_WEIGHTS)) < 0.0:
-        return (beats[:-1] + beats[1:]) / 2.0
-    return beats  # also when the evidence is NaN (no beat inside the envelope)
+    if float(phase_evidence(beats, envelopes, fps) @ np.array(PHASE_WEIGHTS)) >= 0.0:
+        return beats
+    return (beats[:-1] + beats[1:]) / 2.0
 
 
 def track_beats(
