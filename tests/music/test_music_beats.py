@@ -14,9 +14,6 @@ from sinews.music.beats import (
     _normalised,
     _smoothed,
     onset_envelope,
-    phase_evidence,
-    register_envelopes,
-    settle_phase,
     tempo_prior,
     track,
 )
@@ -110,46 +107,6 @@ def test_envelope_balances_registers() -> None:
     env = onset_envelope(onset, centres)
     low = onset_envelope(onset[:, :1], centres[:1])
     assert np.corrcoef(env, low)[0, 1] > 0.3
-
-
-REGISTER_CENTRES = np.array([60.0, 200.0, 600.0, 2000.0, 8000.0])
-"""One band in each of the five registers."""
-
-
-def _onsets_at(times: np.ndarray, seconds: float) -> np.ndarray:
-    """(T, 5) float32 onsets: a click at ``times`` in every register over faint noise."""
-    rng = np.random.default_rng(3)
-    clicks = _clicks(times, seconds)
-    return (clicks[:, None] + 0.05 * rng.random((len(clicks), 5))).astype(np.float32)
-
-
-def test_the_envelope_is_the_mean_of_the_registers() -> None:
-    rng = np.random.default_rng(1)
-    onset = (rng.random((600, 5)) * [1.0, 3.0, 10.0, 30.0, 100.0]).astype(np.float32)
-    registers = register_envelopes(onset, REGISTER_CENTRES)
-    assert registers.shape == (600, 5)
-    assert np.allclose(registers.std(axis=0), 1.0)
-    assert np.allclose(onset_envelope(onset, REGISTER_CENTRES), registers.mean(axis=1))
-
-
-def test_beats_between_the_onsets_move_onto_them() -> None:
-    # onsets on every beat of 120 BPM; beats locked half a beat off move onto the onsets,
-    # beats on the onsets stay
-    onsets = np.arange(0.75, 30.0, 0.5)
-    onset = _onsets_at(onsets, 30.5)
-    off = onsets - 0.25
-    envelopes = register_envelopes(onset, REGISTER_CENTRES)
-    assert np.all(phase_evidence(off, envelopes, FPS) < 0)
-    assert np.all(phase_evidence(onsets, envelopes, FPS) > 0)
-    moved = settle_phase(off, onset, REGISTER_CENTRES, FPS)
-    assert np.allclose(moved, onsets[:-1])
-    assert settle_phase(onsets, onset, REGISTER_CENTRES, FPS) is onsets
-
-
-def test_too_few_beats_keep_their_phase() -> None:
-    onset = _onsets_at(np.array([0.75, 1.25]), 3.0)
-    beats = np.array([0.5, 1.0])
-    assert settle_phase(beats, onset, REGISTER_CENTRES, FPS) is beats
 
 
 def test_no_beats_over_a_silent_intro(groove_audio: Audio) -> None:

@@ -8,8 +8,7 @@
 2. Levels in dB relative to the song's loudness reference, the 99th
    percentile of all its band levels, so that mastering loudness cancels out.
 3. Per-band onsets and adaptive triggers (`onsets`); the onsets pooled by register are the
-   envelope that tempo and beats are tracked on (`beats`), and the registers then decide
-   whether the beats or their midpoints are the beat (`beats.settle_phase`).
+   envelope that tempo and beats are tracked on (`beats`).
 """
 
 from __future__ import annotations
@@ -25,7 +24,7 @@ import numpy as np
 import numpy.typing as npt
 
 from sinews.limits import check_number
-from sinews.music.beats import beat_phase, onset_envelope, settle_phase, track
+from sinews.music.beats import beat_phase, onset_envelope, track
 from sinews.music.decode import Audio, check_readable_file, load_audio
 from sinews.music.errors import AudioError
 from sinews.music.features import ANALYSIS_VERSION, MusicFeatures
@@ -122,9 +121,7 @@ def analyse(
     onset_levels = _relative(onset_abs, reference, ONSET_FLOOR_DB, silent)
     onset = onset_strength(onset_levels, fps)
     triggers = adaptive_triggers(onset, onset_levels, fps, _TRIGGERS)
-    centres = band_centres(edges)
-    tempo, beats = track(onset_envelope(onset, centres), fps, bpm)
-    beats = settle_phase(beats, onset, centres, fps)
+    tempo, beats = track(onset_envelope(onset, band_centres(edges)), fps, bpm)
     tempo = tempo if math.isfinite(tempo) else 0.0
     return MusicFeatures(
         fps=float(fps),

@@ -24,10 +24,6 @@ Programming", J. New Music Research 36(1)) at the metrical level a listener taps
    one and back, each change costing `SWITCH_BEATS` typical beats. A beat in a state
    counts its period's share to the power 1 - `FIT_COUNT_POWER` (as the fit of step 3
    weighs levels), so a faster state does not win by having more beats.
-6. The phase (`settle_phase`, run by the analysis on the onsets): the beats, or their
-   midpoints if the registers' onsets peak more strongly there, weighed by a logistic fit
-   on the beat corpus (`PHASE_WEIGHTS`). It catches songs whose off-beats are loud in most
-   registers, which the pooled envelope's programme can lock onto at the right tempo.
 """
 
 from __future__ import annotations
@@ -44,13 +40,9 @@ if TYPE_CHECKING:
     import scipy.interpolate
 
 __all__ = [
-    "PHASE_WEIGHTS",
     "beat_phase",
     "estimate_tempo",
     "onset_envelope",
-    "phase_evidence",
-    "register_envelopes",
-    "settle_phase",
     "tempo_candidates",
     "track",
     "track_beats",
@@ -95,52 +87,30 @@ HEARD_SLACK_S = 0.05
 ENVELOPE_SPLITS_HZ = (120.0, 300.0, 1000.0, 3000.0)
 """The bands are pooled into five groups split at these frequencies for the envelope."""
 
-PHASE_WEIGHTS = (-0.0732, 1.8684, 1.8987, 1.9381, 1.5169, 1.1482, 1.0659)
-"""Weights of the beat-versus-midpoint evidence of the five registers (low to high), the
-pooled envelope and the plain mean (`settle_phase`); fitted by
-benchmarks/beats/learn_phase.py on the beat corpus's first eight sets (202 songs).
-Leave-one-set-out it moved 5 songs from the off-beat to the beat and none the other way
-(mean F 0.872 -> 0.896; docs/beats.md)."""
-PHASE_REACH_S = 2.0 / 60.0
-"""An envelope's peak near a beat is looked for this far either side."""
-_PHASE_FLOOR = 1e-9
-
-
-def register_envelopes(
-    onset: npt.NDArray[np.float32], centres_hz: npt.NDArray[np.float64]
-) -> npt.NDArray[np.float64]:
-    """(T, R) onset of each frequency group (`ENVELOPE_SPLITS_HZ`, R = 5) of a (T, B) onset
-    array: the group's mean over its bands, scaled to unit standard deviation (zeros for a
-    group with no bands or no onsets)."""
-    edges = (0.0, *ENVELOPE_SPLITS_HZ, math.inf)
-    registers = np.zeros((onset.shape[0], len(edges) - 1))
-    for k, (lo, hi) in enumerate(itertools.pairwise(edges)):
-        members = (centres_hz >= lo) & (centres_hz < hi)
-        if not members.any():
-            continue
-        group = onset[:, members].mean(axis=1, dtype=np.float64)
-        std = group.std()
-        if std > 0:
-            registers[:, k] = group / std
-    return registers
-
 
 def onset_envelope(
     onset: npt.NDArray[np.float32], centres_hz: npt.NDArray[np.float64] | None = None
 ) -> npt.NDArray[np.float64]:
     """(T,) onset envelope of a (T, B) onset array.
 
-    With band centres, the bands are pooled into frequency groups (`register_envelopes`)
-    and the groups are averaged: no one register (a hi-hat on every off-beat, an off-beat
-    bass) outvotes the others. Without centres: the plain mean over bands.
+    With band centres, the bands are pooled into frequency groups (`ENVELOPE_SPLITS_HZ`),
+    each group's mean onset is scaled to unit standard deviation, and the groups are
+    averaged: no one register (a hi-hat on every off-beat, an off-beat bass) outvotes
+    the others. Without centres: the plain mean over bands.
     """
     if centres_hz is None:
         return onset.mean(axis=1, dtype=np.float64)
-    registers = register_envelopes(onset, centres_hz)
+    edges = (0.0, *ENVELOPE_SPLITS_HZ, math.inf)
     total = np.zeros(onset.shape[0])
-    for column in registers.T:
-        total += column
-    return total / registers.shape[1]
+    for lo, hi in itertools.pairwise(edges):
+        members = (centres_hz >= lo) & (centres_hz < hi)
+        if not members.any():
+            continue
+        group = onset[:, members].mean(axis=1, dtype=np.float64)
+        std = group.std()
+        if std > 0:
+            total += group / std
+    return total / (len(edges) - 1)
 
 
 def _comb(envelope: npt.NDArray[np.float64], fps: float) -> scipy.interpolate.CubicSpline | None:
@@ -275,69 +245,6 @@ def _fit(local: npt.NDArray[np.float64], frames: npt.NDArray[np.int64]) -> float
 def _normalised(envelope: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
     std = envelope.std()
     return envelope / std if std > 0 else envelope
-
-
-def phase_evidence(
-    beats: npt.NDArray[np.float64], envelopes: npt.NDArray[np.float64], fps: float
-) -> npt.NDArray[np.float64]:
-    """(E,) log of how strongly each of E envelopes peaks at ``beats`` over at their midpoints.
-
-    Args:
-        beats: (K,) beat times in seconds, K >= 3.
-        envelopes: (T, E) onset envelopes at ``fps``.
-
-    An envelope's strength at a set of times is the mean, over the times, of its peak
-    (above its minimum) within `PHASE_REACH_S`; the evidence is log(strength at the beats /
-    strength at the midpoints), so it changes sign when the two are swapped.
-    """
-    midpoints = (beats[:-1] + beats[1:]) / 2.0
-    reach = max(1, round(PHASE_REACH_S * fps))
-    lifted = envelopes - envelopes.min(axis=0)
-    last = len(lifted) - 1
-
-    def strength(times: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
-        frames = np.round(times * fps).astype(np.int64)
-        frames = frames[(frames >= 0) & (frames <= last)]
-        peaks = np.stack(
-            [lifted[np.clip(frames + k, 0, last)] for k in range(-reach, reach + 1)]
-        ).max(axis=0)
-        return peaks.mean(axis=0) + _PHASE_FLOOR
-
-    return np.log(strength(beats)) - np.log(strength(midpoints))
-
-
-def settle_phase(
-    beats: npt.NDArray[np.float64],
-    onset: npt.NDArray[np.float32],
-    centres_hz: npt.NDArray[np.float64],
-    fps: float,
-) -> npt.NDArray[np.float64]:
-    """``beats``, or their midpoints where the registers say those are the beat.
-
-    The tracker follows the pooled envelope; on music whose off-beats are loud in most
-    registers it can lock onto them at the right tempo. The evidence of `phase_evidence` for
-    the five registers, the pooled envelope and the plain mean over bands, weighed by
-    `PHASE_WEIGHTS` (a logistic fit on the beat corpus, docs/beats.md), decides.
-
-    Args:
-        beats: (K,) beat times in seconds.
-        onset: (T, B) onset array at ``fps``; centres_hz: (B,) band centres.
-
-    Returns:
-        (K,) ``beats`` unchanged, or (K - 1,) their midpoints.
-    """
-    if len(beats) < 3:
-        return beats
-    envelopes = np.column_stack(
-        [
-            register_envelopes(onset, centres_hz),
-            onset_envelope(onset, centres_hz),
-            onset_envelope(onset),
-        ]
-    )
-    if float(phase_evidence(beats, envelopes, fps) @ np.array(PHASE_WEIGHTS)) >= 0.0:
-        return beats
-    return (beats[:-1] + beats[1:]) / 2.0
 
 
 def track_beats(
