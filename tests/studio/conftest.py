@@ -84,8 +84,11 @@ def playwright() -> Iterator[Any]:
     when Chromium is not installed."""
     if not CHROMIUM.exists():
         pytest.skip(f"browser tests need Chromium at {CHROMIUM} (apt-get install chromium)")
-    from playwright.sync_api import sync_playwright
+    from playwright.sync_api import expect, sync_playwright
 
+    # Liveness bounds, not timing claims: the suite runs one worker per core, so a page may
+    # wait while the other worker compiles or simulates (pages set the same for actions).
+    expect.set_options(timeout=LIVENESS_MS)
     with sync_playwright() as started:
         yield started
 
@@ -104,11 +107,6 @@ def page(browser: Any) -> Iterator[Any]:
 
     Refused requests (4xx, which the page reports as one-line messages) are expected.
     """
-    from playwright.sync_api import expect
-
-    # Liveness bounds, not timing claims: the suite runs one worker per core, so a page may
-    # wait while the other worker compiles or simulates.
-    expect.set_options(timeout=LIVENESS_MS)
     context = browser.new_context(viewport={"width": 1600, "height": 1000}, accept_downloads=True)
     context.set_default_timeout(LIVENESS_MS)
     page = context.new_page()

@@ -18,7 +18,7 @@ from sinews.studio.scene_socket import MAX_LIVE_SCENES, MAX_STROKE_POINTS
 from sinews.studio.service import StudioSettings, Worker
 from studio_helpers import HOME
 
-SCENES = "ws://127.0.0.1:8765/api/scenes/"
+SCENES = HOME.replace("http", "ws", 1) + "/api/scenes/"
 
 
 @pytest.fixture(scope="module")

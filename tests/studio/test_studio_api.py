@@ -19,7 +19,7 @@ from sinews.studio.songs import MAX_UPLOAD_BYTES
 from studio_helpers import DATA, HOME, decode_pack, in_process_studio, worker_of
 
 JSON = {"Content-Type": "application/json"}
-LIVE = "ws://127.0.0.1:8765/api/live"
+LIVE = HOME.replace("http", "ws", 1) + "/api/live"
 
 
 @pytest.fixture(scope="module")

@@ -16,7 +16,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from starlette.testclient import TestClient
 
-from studio_helpers import in_process_studio
+from studio_helpers import HOME, in_process_studio
 
 FUZZ = settings(
     max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
@@ -76,7 +76,7 @@ def test_json_routes_never_fail_with_a_server_error(client: TestClient, route: s
 
 @pytest.mark.parametrize("path", ["/api/live", "/api/scenes/scribbles"])
 def test_socket_messages_get_an_answer_not_a_drop(client: TestClient, path: str) -> None:
-    with client.websocket_connect(f"ws://127.0.0.1:8765{path}") as socket:
+    with client.websocket_connect(HOME.replace("http", "ws", 1) + path) as socket:
 
         @FUZZ
         @given(body=bodies)
