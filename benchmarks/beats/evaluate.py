@@ -10,11 +10,17 @@ are scored against reference/ID.txt: F (70 ms), octave-tolerant F, CMLt, AMLt (b
 With --librosa-python, the same decoded samples go to that interpreter, which times
 librosa's `onset_strength` + `beat_track` warm (after one untimed call) on them right
 after ours on each song; both timings are the best of --repeats calls.
+
+A song's phase is *contested* when two of the reference trackers agree on the tempo
+(within 4 %) but not on the phase (F < 0.2 between them, reference/summary.tsv): there the
+reference is one camp's choice. The summary line also gives the scores over the other songs;
+the table marks contested songs with a dagger.
 """
 
 from __future__ import annotations
 
 import argparse
+import csv
 import json
 import subprocess
 import sys
@@ -29,6 +35,29 @@ sys.path.insert(0, str(HERE))
 
 from fetch import SETS, default_cache, excerpt_path, load_corpus  # noqa: E402
 from metrics import score, tempo_of, trim  # noqa: E402
+
+CONTESTED_F = 0.2
+"""Two reference trackers at one tempo with F below this between them disagree on the phase."""
+SAME_TEMPO = 0.04
+_PAIRS = {"F_mad_ess": ("madmom", "essentia"), "F_mad_lib": ("madmom", "librosa"),
+          "F_ess_lib": ("essentia", "librosa")}  # fmt: skip
+
+
+def contested_songs() -> set[str]:
+    """Ids of the kept songs whose phase the reference trackers disagree on."""
+    with open(HERE / "reference" / "summary.tsv", newline="") as fh:
+        rows = list(csv.DictReader(fh, delimiter="\t"))
+    return {
+        r["id"]
+        for r in rows
+        if r["status"] == "kept"
+        and any(
+            float(r[pair]) < CONTESTED_F
+            and abs(float(r[f"{a}_bpm"]) / float(r[f"{b}_bpm"]) - 1.0) < SAME_TEMPO
+            for pair, (a, b) in _PAIRS.items()
+        )
+    }
+
 
 _LIBROSA_TIMER = r"""
 import sys, time
@@ -70,6 +99,7 @@ def main() -> None:
     ]
     analyse(load_audio(excerpt_path(args.cache, chosen[0]["id"])))  # warm numba / caches
     rows = []
+    contested = contested_songs()
     librosa = None
     if args.librosa_python:
         librosa = subprocess.Popen(
@@ -96,6 +126,7 @@ def main() -> None:
             row["first_beat"] = float(features.beats[0]) if len(features.beats) else float("nan")
             row["ref_first_beat"] = float(ref[0])
             row["ours_s"] = best
+            row["contested"] = sid in contested
             if librosa is not None and librosa.stdin and librosa.stdout:
                 # the same decoded samples, timed right after ours (one untimed warm-up call)
                 npy = Path(tmp) / f"{sid}.npy"
@@ -132,7 +163,7 @@ def print_table(rows: list[dict]) -> None:
         ]
         if has_lib:
             cells.append(f"{r.get('librosa_s', float('nan')):.3f}")
-        print(f"| {r['id']} | " + " | ".join(cells) + " |")
+        print(f"| {r['id']}{' †' if r['contested'] else ''} | " + " | ".join(cells) + " |")
     mean = {k: float(np.mean([r[k] for r in rows])) for k in ("F", "Foct", "CMLt", "AMLt")}
     off = sum(1 for r in rows if abs(r["ratio"] - 1) > 0.04)
     line = (
@@ -146,6 +177,14 @@ def print_table(rows: list[dict]) -> None:
     if not all(r["deterministic"] for r in rows):
         line += "; NOT DETERMINISTIC"
     print(line)
+    clear = [r for r in rows if not r["contested"]]
+    if clear and len(clear) < len(rows):
+        print(
+            f"phase contested among the references on {len(rows) - len(clear)} (†); over the "
+            f"other {len(clear)}: F {np.mean([r['F'] for r in clear]):.3f}, F oct "
+            f"{np.mean([r['Foct'] for r in clear]):.3f}, min F {min(r['F'] for r in clear):.3f}, "
+            f"{sum(r['F'] < 0.6 for r in clear)} below 0.6"
+        )
 
 
 if __name__ == "__main__":

@@ -31,6 +31,7 @@ SETS = (
     "confirm6",
     "confirm7",
     "confirm8",
+    "confirm9",
 )
 """The corpus's sets, in the order they were fixed (docs/beats.md)."""
 
