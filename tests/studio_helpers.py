@@ -59,7 +59,8 @@ class StudioServer:
         )
         self.output: list[str] = []
         lines: queue.Queue[str] = queue.Queue()
-        threading.Thread(target=self._read, args=(lines,), daemon=True).start()
+        self._reader = threading.Thread(target=self._read, args=(lines,), daemon=True)
+        self._reader.start()
         self.url = self._wait_for_url(lines)
 
     def _read(self, lines: queue.Queue[str]) -> None:
@@ -83,6 +84,12 @@ class StudioServer:
         """The run the server opened (from its start-up line)."""
         first = next(line for line in self.output if "(run " in line)
         return int(first.split("(run ", 1)[1].split(",")[0])
+
+    def wait(self, timeout: float) -> int:
+        """The exit status, once the process has ended and all its output is read."""
+        status = self.process.wait(timeout=timeout)
+        self._reader.join(timeout=timeout)
+        return status
 
     def kill(self) -> None:
         """SIGKILL: nothing gets a chance to clean up."""

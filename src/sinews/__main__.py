@@ -8,19 +8,15 @@ imports nothing heavy, installs a handler before anything else is imported.
 
 from __future__ import annotations
 
-import os
 import signal
 import sys
 
-
-def _exit_interrupted(signum: int, frame: object) -> None:
-    os.write(2, b"interrupted\n")
-    os._exit(130)
+from sinews.interrupted import exit_interrupted
 
 
 def run() -> None:
     """Entry point of the ``sinews`` console script."""
-    signal.signal(signal.SIGINT, _exit_interrupted)
+    signal.signal(signal.SIGINT, exit_interrupted)
     from sinews.cli import main
 
     sys.exit(main())

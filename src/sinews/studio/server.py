@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import signal
 import socket
 import sys
 import threading
@@ -11,6 +12,7 @@ from collections.abc import Callable, Sequence
 
 from sinews.dancers.warmup import Warmup
 from sinews.errors import SinewsError, missing_extra
+from sinews.interrupted import exit_interrupted
 from sinews.studio.service import Studio, StudioSettings, Worker
 
 __all__ = ["LOOPBACK", "serve"]
@@ -51,6 +53,7 @@ def serve(
 
         from sinews.studio.app import allowed_hosts, create_app
         from sinews.studio.connections import MAX_CONNECTIONS, GuardedHttp
+        from sinews.studio.graceful import GracefulServer
     except ImportError as exc:
         raise missing_extra(exc.name or "starlette", "studio") from None
     if host not in LOOPBACK:
@@ -85,7 +88,8 @@ def serve(
         http=GuardedHttp,
         limit_concurrency=MAX_CONNECTIONS,
     )
-    server = uvicorn.Server(config)
+    server = GracefulServer(config)
+    signal.signal(signal.SIGINT, server.handle_exit)  # from here on, before uvicorn serves too
     say(f"sinews studio: {url} (run {run_id}, database {settings.db}); Ctrl+C stops it")
     sys.stdout.flush()
     if open_browser:
@@ -93,7 +97,15 @@ def serve(
     try:
         server.run(sockets=[listener])
     finally:
+        # the app's shutdown closed the worker, unless the server never ran; a Ctrl+C while
+        # this closes quits at once
+        signal.signal(signal.SIGINT, exit_interrupted)
         warmup.stop()
+        worker.close()
+    if server.stopped_by == signal.SIGINT:
+        raise KeyboardInterrupt  # exit 130, as every command
+    if server.stopped_by is not None:
+        signal.raise_signal(server.stopped_by)  # SIGTERM: its default, end
 
 
 def _bind(host: str, port: int) -> socket.socket:

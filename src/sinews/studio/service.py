@@ -112,6 +112,7 @@ class Worker:
     def __init__(self, settings: StudioSettings) -> None:
         self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="sinews-studio")
         self._studio: Studio | None = None
+        self._closed = False
         self.settings = settings
 
     def submit(self, fn: Callable[[Studio], T]) -> Future[T]:
@@ -132,7 +133,13 @@ class Worker:
         return fn(self._studio)
 
     def close(self) -> None:
-        """Close the studio's store and stop the thread."""
-        if self._studio is not None:
-            self._pool.submit(self._studio.close).result()
+        """Close the studio's store (after the calls already queued) and stop the thread; a
+        second close does nothing."""
+        if not self._closed:
+            self._closed = True
+            self._pool.submit(self._close_studio).result()
         self._pool.shutdown(wait=True)
+
+    def _close_studio(self) -> None:
+        if self._studio is not None:
+            self._studio.close()
