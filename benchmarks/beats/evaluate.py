@@ -33,14 +33,12 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
-from fetch import SETS, default_cache, excerpt_path, load_corpus  # noqa: E402
+from fetch import PAIR_COLUMNS, SETS, default_cache, excerpt_path, load_corpus  # noqa: E402
 from metrics import score, tempo_of, trim  # noqa: E402
 
 CONTESTED_F = 0.2
 """Two reference trackers at one tempo with F below this between them disagree on the phase."""
 SAME_TEMPO = 0.04
-_PAIRS = {"F_mad_ess": ("madmom", "essentia"), "F_mad_lib": ("madmom", "librosa"),
-          "F_ess_lib": ("essentia", "librosa")}  # fmt: skip
 
 
 def contested_songs() -> set[str]:
@@ -54,7 +52,7 @@ def contested_songs() -> set[str]:
         and any(
             float(r[pair]) < CONTESTED_F
             and abs(float(r[f"{a}_bpm"]) / float(r[f"{b}_bpm"]) - 1.0) < SAME_TEMPO
-            for pair, (a, b) in _PAIRS.items()
+            for pair, (a, b) in PAIR_COLUMNS.items()
         )
     }
 

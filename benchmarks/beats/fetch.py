@@ -34,6 +34,14 @@ SETS = (
     "confirm9",
 )
 """The corpus's sets, in the order they were fixed (docs/beats.md)."""
+REFERENCE_TRACKERS = ("madmom", "essentia", "librosa")
+"""The trackers whose consensus makes the reference beats (make_reference.py)."""
+PAIR_COLUMNS = {
+    "F_mad_ess": ("madmom", "essentia"),
+    "F_mad_lib": ("madmom", "librosa"),
+    "F_ess_lib": ("essentia", "librosa"),
+}
+"""reference/summary.tsv's columns of F between two reference trackers."""
 
 
 def default_cache() -> Path:

@@ -21,7 +21,6 @@ reports octave-tolerant F.
 from __future__ import annotations
 
 import argparse
-import itertools
 import sys
 import time
 from pathlib import Path
@@ -35,10 +34,16 @@ for _alias, _type in (("int", int), ("float", float), ("bool", bool), ("complex"
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
-from fetch import default_cache, excerpt_path, load_corpus  # noqa: E402
+from fetch import (  # noqa: E402
+    PAIR_COLUMNS,
+    REFERENCE_TRACKERS,
+    default_cache,
+    excerpt_path,
+    load_corpus,
+)
 from metrics import f_measure, tempo_of, trim  # noqa: E402
 
-TRACKERS = ("madmom", "essentia", "librosa")
+TRACKERS = REFERENCE_TRACKERS
 
 
 def run_madmom(path: Path) -> np.ndarray:
@@ -77,7 +82,7 @@ def main() -> None:
     raw_dir = HERE / "reference" / "raw"
     raw_dir.mkdir(parents=True, exist_ok=True)
     head = ["id", "set", *(f"{t}_bpm" for t in TRACKERS)]
-    head += ["F_mad_ess", "F_mad_lib", "F_ess_lib", "status", "reference"]
+    head += [*PAIR_COLUMNS, "status", "reference"]
     rows = ["\t".join(head)]
     for song in songs:
         sid = song["id"]
@@ -93,8 +98,7 @@ def main() -> None:
                 print(f"{sid} {name}: {time.perf_counter() - start:.1f} s", file=sys.stderr)
             beats[name] = np.atleast_1d(np.loadtxt(out, ndmin=1))
         pair_f = {
-            (a, b): f_measure(trim(beats[a]), trim(beats[b]))
-            for a, b in itertools.combinations(TRACKERS, 2)
+            (a, b): f_measure(trim(beats[a]), trim(beats[b])) for a, b in PAIR_COLUMNS.values()
         }
         (a, b), best = max(pair_f.items(), key=lambda kv: kv[1])
         ref_file = HERE / "reference" / f"{sid}.txt"
@@ -110,7 +114,7 @@ def main() -> None:
             "\t".join(
                 [sid, song["set"]]
                 + [f"{tempo_of(trim(beats[t])):.1f}" for t in TRACKERS]
-                + [f"{pair_f[p]:.3f}" for p in itertools.combinations(TRACKERS, 2)]
+                + [f"{pair_f[p]:.3f}" for p in PAIR_COLUMNS.values()]
                 + [status, chosen]
             )
         )
