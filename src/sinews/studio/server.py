@@ -66,35 +66,29 @@ def serve(
     worker = Worker(settings)
     try:
         run_id = worker.call(lambda s: s.start())
-    except BaseException:
-        warmup.stop()
-        worker.close()
-        listener.close()
-        raise
 
-    def first_generation(studio: Studio) -> None:
-        warmup.wait()
-        studio.motion.generation(run_id, studio.runs.get(run_id).last)
+        def first_generation(studio: Studio) -> None:
+            warmup.wait()
+            studio.motion.generation(run_id, studio.runs.get(run_id).last)
 
-    # simulate the first generation while the browser opens: the page's first request
-    # then finds it ready or nearly so
-    worker.submit(first_generation)
-    bound = listener.getsockname()[1]
-    url = f"http://{'localhost' if host == '::1' else host}:{bound}/"
-    config = uvicorn.Config(
-        create_app(worker, host=host, allow_hosts=allow_hosts),
-        log_level="warning",
-        lifespan="on",
-        http=GuardedHttp,
-        limit_concurrency=MAX_CONNECTIONS,
-    )
-    server = GracefulServer(config)
-    signal.signal(signal.SIGINT, server.handle_exit)  # from here on, before uvicorn serves too
-    say(f"sinews studio: {url} (run {run_id}, database {settings.db}); Ctrl+C stops it")
-    sys.stdout.flush()
-    if open_browser:
-        threading.Thread(target=_open_when_up, args=(server, url), daemon=True).start()
-    try:
+        # simulate the first generation while the browser opens: the page's first request
+        # then finds it ready or nearly so
+        worker.submit(first_generation)
+        bound = listener.getsockname()[1]
+        url = f"http://{'localhost' if host == '::1' else host}:{bound}/"
+        config = uvicorn.Config(
+            create_app(worker, host=host, allow_hosts=allow_hosts),
+            log_level="warning",
+            lifespan="on",
+            http=GuardedHttp,
+            limit_concurrency=MAX_CONNECTIONS,
+        )
+        server = GracefulServer(config)
+        signal.signal(signal.SIGINT, server.handle_exit)  # from here on, before uvicorn serves
+        say(f"sinews studio: {url} (run {run_id}, database {settings.db}); Ctrl+C stops it")
+        sys.stdout.flush()
+        if open_browser:
+            threading.Thread(target=_open_when_up, args=(server, url), daemon=True).start()
         server.run(sockets=[listener])
     finally:
         # the app's shutdown closed the worker, unless the server never ran; a Ctrl+C while
@@ -102,6 +96,7 @@ def serve(
         signal.signal(signal.SIGINT, exit_interrupted)
         warmup.stop()
         worker.close()
+        listener.close()
     if server.stopped_by == signal.SIGINT:
         raise KeyboardInterrupt  # exit 130, as every command
     if server.stopped_by is not None:
