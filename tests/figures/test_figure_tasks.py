@@ -180,6 +180,36 @@ def test_the_limbo_pole_is_felt_only_when_touched() -> None:
         assert (touch < 0) == touched
 
 
+def test_ducking_is_measured_above_the_bar_until_the_lamp_has_passed_it() -> None:
+    """Standing before the 0.25 m bar, folded low before it, standing past it."""
+    task = luxo_limbo(0.25, target=1.0)  # the bar at x = 0.5
+    meter = TaskMeter(task, 3)
+    for k in range(5):
+        sensors = sensors_for(task, root_x=[0.1, 0.1, 0.6], z_elbow=[0.3, 0.2, 0.3],
+                              z_neck=[0.4, 0.24, 0.4], z_shade=[0.35, 0.1, 0.35])  # fmt: skip
+        meter(k / 10, sensors, np.zeros((3, 3)))
+    duck = meter.terms()[:, list(task.weights).index("duck")]
+    np.testing.assert_allclose(duck, [-0.15, 0.0, 0.0], atol=1e-12)
+    behind = luxo_limbo(0.25, target=-1.0)  # the bar at x = -0.5: x = 0.1 is before it
+    meter = TaskMeter(behind, 1)
+    meter(0.0, sensors_for(behind, root_x=[0.1], z_neck=[0.4]), np.zeros((1, 3)))
+    assert meter.terms()[0, list(behind.weights).index("duck")] == pytest.approx(-0.15)
+
+
+def test_a_standing_lamp_ducks_less_the_lower_the_bar_is_set_above_it() -> None:
+    """The rest pose in physics: the duck term is its highest point above the bar."""
+    penalties = []
+    for height in (0.2, 0.3, 0.5):
+        task = luxo_limbo(height)
+        meter = TaskMeter(task, 1)
+        rollout(task.figure, HoldPose(task.figure.neutral), 1, 0.3, observer=meter)
+        penalties.append(meter.terms()[0, list(task.weights).index("duck")])
+    assert penalties[0] < penalties[1] < penalties[2] == 0.0
+    assert penalties[0] - penalties[1] == pytest.approx(-0.1, abs=1e-3)
+    with pytest.raises(FigureError, match="duck"):
+        Task(**{**vars(luxo_hop()), "weights": {"distance": 1.0, "duck": 1.0}})
+
+
 def test_the_meter_needs_observations(hop: Task) -> None:
     with pytest.raises(FigureError):
         TaskMeter(hop, 1).terms()

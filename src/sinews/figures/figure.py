@@ -153,14 +153,14 @@ class Figure:
         floor_only: Sequence[str] = (),
     ) -> Figure:
         """This figure again from its edited MJCF (``ET.fromstring(self.xml)`` with a target
-        or a pole added, say), sensing ``sites`` besides its own and ``touch_bodies``; the
+        or a pole added, say), sensing ``sites`` and ``touch_bodies`` besides its own; the
         same name, root, base, head and limb bodies (see `from_mjcf`)."""
         return Figure.from_mjcf(
             ET.tostring(mjcf, encoding="unicode"),
             name=self.name,
             base_bodies=self.base_bodies,
             head_bodies=self.head_bodies,
-            touch_bodies=touch_bodies,
+            touch_bodies=(*self.touch_bodies, *touch_bodies),
             sites=(*self.sites, *sites),
             limb_bodies=self.limb_bodies,
             root=self.root,

@@ -27,6 +27,7 @@ __all__ = [
     "STYLE",
     "TERMS",
     "TOUCH_HOLD",
+    "Duck",
     "Goal",
     "Task",
     "Wave",
@@ -37,7 +38,7 @@ __all__ = [
 FloatArray = npt.NDArray[np.float64]
 
 TERMS = ("distance", "early", "still", "head", "fallen", "neutral", "energy", "touch",
-         "lift", "spot", "joints", "smooth")  # fmt: skip
+         "lift", "spot", "joints", "smooth", "duck")  # fmt: skip
 """Every fitness term a task can weigh (see `sinews.figures.terms`); the main goal is
 ``distance``, or ``lift`` for a dance."""
 MAIN_GOALS = ("distance", "lift")
@@ -153,6 +154,29 @@ class Goal:
                               f"its own window), got {self.hold}")  # fmt: skip
 
 
+@dataclass(frozen=True)
+class Duck:
+    """A bar to pass under, for the ``duck`` term: how far the figure's highest point stands
+    above the bar's underside while the figure is still before the bar.
+
+    Attributes:
+        points: sensor columns of the heights of the figure's high points (e.g. ``z_elbow``).
+        height: the bar's underside, m.
+        along: the sensor column of the root's position along the path, e.g. ``root_x``.
+        at: where the bar is along it, m; the root is before the bar while it has not
+            passed this from the start (0) on.
+    """
+
+    points: tuple[str, ...]
+    height: float
+    along: str
+    at: float
+
+    def __post_init__(self) -> None:
+        if not self.points or not self.at:
+            raise FigureError("a bar to duck under needs high points and a place off the start")
+
+
 @dataclass(frozen=True, eq=False)
 class Task:
     """A motion task: the scene, the goal, the controller's view and the fitness terms.
@@ -170,6 +194,7 @@ class Task:
             measured from the rest pose, so this is usually negative).
         low: ... or while a sensor column reads less than a value, e.g. ``("z_shade",
             0.2)``: a lamp whose shade is under 20 cm is lying down, or None.
+        duck: the bar the ``duck`` term measures ducking under, or None.
         params: what the task was built with (for configs and titles).
         music: the music terminals the controller hears after the sensors and the goal's
             (see `sinews.control.music_input`; a dance's); their values follow the
@@ -188,6 +213,7 @@ class Task:
     params: Mapping[str, Any] = field(default_factory=dict)
     music: tuple[str, ...] = ()
     low: tuple[str, float] | None = None
+    duck: Duck | None = None
 
     def __post_init__(self) -> None:
         unknown = [t for t in self.weights if t not in TERMS]
@@ -195,8 +221,11 @@ class Task:
             raise FigureError(f"{self.name}: weights must start with {' or '.join(MAIN_GOALS)} "
                               f"and use {TERMS}")  # fmt: skip
         low = () if self.low is None else (self.low[0],)
+        duck = () if self.duck is None else (*self.duck.points, self.duck.along)
+        if "duck" in self.weights and self.duck is None:
+            raise FigureError(f"{self.name}: the duck term needs a bar (Task.duck)")
         for column in (*self.sensors, *self.goal.tracked, *self.goal.target, *self.goal.origin,
-                       *low):  # fmt: skip
+                       *low, *duck):  # fmt: skip
             if isinstance(column, str):
                 self.figure.sensor_index(column)
         if not 0 < self.seconds <= MAX_SECONDS:  # also refuses NaN

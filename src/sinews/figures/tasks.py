@@ -23,7 +23,7 @@ from typing import Any
 
 from sinews.figures.figure import Figure, FigureError
 from sinews.figures.humanoid import humanoid
-from sinews.figures.luxo import luxo
+from sinews.figures.luxo import LuxoShape, luxo
 from sinews.figures.mjcf import fmt
 from sinews.figures.snake import snake
 from sinews.figures.task import (
@@ -31,6 +31,7 @@ from sinews.figures.task import (
     STYLE,
     TERMS,
     TOUCH_HOLD,
+    Duck,
     Goal,
     Task,
     Wave,
@@ -165,6 +166,15 @@ LIMBO_BOARD_TOP = 1.0
 """Top of the board above the limbo bar, m: the lamp must pass under, not hop over."""
 
 
+LUXO_HIGH_POINTS = {
+    "elbow": ("arm_upper", (0.0, 0.0, 0.0)),
+    "neck": ("head", (0.0, 0.0, 0.0)),
+    "shade": ("head", (0.0, 0.0, LuxoShape().head_length)),
+}
+"""Where the lamp is highest in any pose (site → body, position): the limbo's ``duck`` term
+measures the highest of these above the bar."""
+
+
 def luxo_limbo(
     pole_height: float | None = None,
     *,
@@ -200,16 +210,17 @@ def luxo_limbo(
     ET.SubElement(pole, "geom", {"name": "board", "type": "box", **collide,
                                  "size": fmt(pole_radius / 2, 0.3, board),
                                  "pos": fmt(0, 0, pole_radius + board)})  # fmt: skip
-    figure = lamp.edited(root, touch_bodies=("pole",))
+    figure = _with_sites(lamp.edited(root, touch_bodies=("pole",)), LUXO_HIGH_POINTS)
     return Task(
         name="luxo-limbo",
         figure=figure,
         goal=on_the_x(target),
         joints=("base_hinge", "elbow", "neck"),
         sensors=LUXO_SENSORS,
-        weights={"distance": 1.0, **STYLE, "touch": 5.0},
+        weights={"distance": 1.0, **STYLE, "touch": 5.0, "duck": 0.0},
         seconds=seconds,
         params={"pole_height": pole_height, "target": float(target), "pole_x": where},
+        duck=Duck(tuple(f"z_{site}" for site in LUXO_HIGH_POINTS), pole_height, "root_x", where),
     )
 
 
