@@ -156,18 +156,21 @@ class Goal:
 
 @dataclass(frozen=True)
 class Duck:
-    """A bar to pass under, for the ``duck`` term: how far the figure's highest point stands
+    """A bar to pass under, for the ``duck`` term: how far the top of the figure stands
     above the bar's underside while the figure is still before the bar.
 
     Attributes:
-        points: sensor columns of the heights of the figure's high points (e.g. ``z_elbow``).
+        points: the figure's high points as (sensor column of the height, e.g. ``z_elbow``;
+            how far its surface reaches above it, m: the radius of the capsule ending there).
+            The top is the highest point plus its reach (a capsule's top is one of its ends'
+            plus its radius).
         height: the bar's underside, m.
         along: the sensor column of the root's position along the path, e.g. ``root_x``.
         at: where the bar is along it, m; the root is before the bar while it has not
             passed this from the start (0) on.
     """
 
-    points: tuple[str, ...]
+    points: tuple[tuple[str, float], ...]
     height: float
     along: str
     at: float
@@ -221,7 +224,7 @@ class Task:
             raise FigureError(f"{self.name}: weights must start with {' or '.join(MAIN_GOALS)} "
                               f"and use {TERMS}")  # fmt: skip
         low = () if self.low is None else (self.low[0],)
-        duck = () if self.duck is None else (*self.duck.points, self.duck.along)
+        duck = () if self.duck is None else (*(c for c, _ in self.duck.points), self.duck.along)
         if "duck" in self.weights and self.duck is None:
             raise FigureError(f"{self.name}: the duck term needs a bar (Task.duck)")
         for column in (*self.sensors, *self.goal.tracked, *self.goal.target, *self.goal.origin,

@@ -166,13 +166,18 @@ LIMBO_BOARD_TOP = 1.0
 """Top of the board above the limbo bar, m: the lamp must pass under, not hop over."""
 
 
+_SHAPE = LuxoShape()
 LUXO_HIGH_POINTS = {
-    "elbow": ("arm_upper", (0.0, 0.0, 0.0)),
-    "neck": ("head", (0.0, 0.0, 0.0)),
-    "shade": ("head", (0.0, 0.0, LuxoShape().head_length)),
+    "elbow": ("arm_upper", (0.0, 0.0, 0.0), _SHAPE.arm_radius),
+    "neck": ("head", (0.0, 0.0, 0.0), _SHAPE.arm_radius),
+    "shade_back": ("head", (0.0, 0.0, _SHAPE.head_radius), _SHAPE.head_radius),
+    "shade": ("head", (0.0, 0.0, _SHAPE.head_length), _SHAPE.head_radius),
 }
-"""Where the lamp is highest in any pose (site → body, position): the limbo's ``duck`` term
-measures the highest of these above the bar."""
+"""The ends of the lamp's upper capsules (site → body, position, the capsule's radius): in any
+pose its top is one of them plus its radius. The limbo's ``duck`` term measures that top above
+the bar (the lower arm's other end is at the base, below its elbow end or the base's top)."""
+LUXO_TOPS = tuple((f"z_{site}", radius) for site, (*_, radius) in LUXO_HIGH_POINTS.items())
+"""The heights of `LUXO_HIGH_POINTS` as a `Duck`'s points."""
 
 
 def luxo_limbo(
@@ -210,7 +215,8 @@ def luxo_limbo(
     ET.SubElement(pole, "geom", {"name": "board", "type": "box", **collide,
                                  "size": fmt(pole_radius / 2, 0.3, board),
                                  "pos": fmt(0, 0, pole_radius + board)})  # fmt: skip
-    figure = _with_sites(lamp.edited(root, touch_bodies=("pole",)), LUXO_HIGH_POINTS)
+    sites = {site: (body, pos) for site, (body, pos, _) in LUXO_HIGH_POINTS.items()}
+    figure = _with_sites(lamp.edited(root, touch_bodies=("pole",)), sites)
     return Task(
         name="luxo-limbo",
         figure=figure,
@@ -220,7 +226,7 @@ def luxo_limbo(
         weights={"distance": 1.0, **STYLE, "touch": 5.0, "duck": 0.0},
         seconds=seconds,
         params={"pole_height": pole_height, "target": float(target), "pole_x": where},
-        duck=Duck(tuple(f"z_{site}" for site in LUXO_HIGH_POINTS), pole_height, "root_x", where),
+        duck=Duck(LUXO_TOPS, pole_height, "root_x", where),
     )
 
 

@@ -36,7 +36,7 @@ The terms (`TERMS`), each **higher is better** (penalties are ≤ 0), as
   (τ from the PD law and each servo's torque limit); off in the built-ins.
 - ``touch``: minus the fraction of ticks with contact on a touch body (the
   limbo pole).
-- ``duck``: minus the mean over the trial of how far the figure's highest point stands
+- ``duck``: minus the mean over the trial of how far the top of the figure's surface stands
   above a bar's underside while its root is still before the bar, m (`Task.duck`): the
   step between standing at a limbo bar and passing under it is getting low.
 
@@ -137,11 +137,11 @@ class TaskMeter:
         self._spot = np.zeros(n)
         self._duck = np.zeros(n)
         bar = task.duck
-        self._bar = (
-            None
-            if bar is None
-            else ([index(c) for c in bar.points], bar.height, index(bar.along), bar.at)
-        )
+        self._bar = None
+        if bar is not None:
+            columns = [index(column) for column, _ in bar.points]
+            reach = np.array([reach for _, reach in bar.points])
+            self._bar = (columns, reach, bar.height, index(bar.along), bar.at)
         self._angles: list[FloatArray] | None = (
             [] if any(name in task.weights for name in DANCE_TERMS) else None
         )
@@ -184,9 +184,9 @@ class TaskMeter:
             self._neutral = np.abs(q[:, self._posed] - neutral).mean(axis=1)
         self._spot += self._distance
         if self._bar is not None:
-            points, height, along, at = self._bar
+            points, reach, height, along, at = self._bar
             before = np.sign(at) * (at - sensors[:, along]) > 0.0
-            above = np.maximum(0.0, sensors[:, points].max(axis=1) - height)
+            above = np.maximum(0.0, (sensors[:, points] + reach).max(axis=1) - height)
             self._duck += np.where(before, above, 0.0)
         if self._angles is not None:
             self._angles.append(q[:, self._driven].copy())
