@@ -32,6 +32,7 @@ SETS = (
     "confirm7",
     "confirm8",
     "confirm9",
+    "confirm10",
 )
 """The corpus's sets, in the order they were fixed (docs/beats.md)."""
 REFERENCE_TRACKERS = ("madmom", "essentia", "librosa")
