@@ -43,8 +43,6 @@ from fetch import (  # noqa: E402
 )
 from metrics import f_measure, tempo_of, trim  # noqa: E402
 
-TRACKERS = REFERENCE_TRACKERS
-
 
 def run_madmom(path: Path) -> np.ndarray:
     from madmom.features.beats import DBNBeatTrackingProcessor, RNNBeatProcessor
@@ -81,7 +79,7 @@ def main() -> None:
     _, songs = load_corpus()
     raw_dir = HERE / "reference" / "raw"
     raw_dir.mkdir(parents=True, exist_ok=True)
-    head = ["id", "set", *(f"{t}_bpm" for t in TRACKERS)]
+    head = ["id", "set", *(f"{t}_bpm" for t in REFERENCE_TRACKERS)]
     head += [*PAIR_COLUMNS, "status", "reference"]
     rows = ["\t".join(head)]
     for song in songs:
@@ -89,7 +87,7 @@ def main() -> None:
         if args.only and sid not in args.only:
             continue
         beats = {}
-        for name in TRACKERS:
+        for name in REFERENCE_TRACKERS:
             out = raw_dir / f"{sid}.{name}.txt"
             if args.rerun or not out.exists():
                 start = time.perf_counter()
@@ -113,7 +111,7 @@ def main() -> None:
         rows.append(
             "\t".join(
                 [sid, song["set"]]
-                + [f"{tempo_of(trim(beats[t])):.1f}" for t in TRACKERS]
+                + [f"{tempo_of(trim(beats[t])):.1f}" for t in REFERENCE_TRACKERS]
                 + [f"{pair_f[p]:.3f}" for p in PAIR_COLUMNS.values()]
                 + [status, chosen]
             )
