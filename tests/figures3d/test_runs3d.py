@@ -46,6 +46,15 @@ def test_a_3d_run_is_stored_with_its_task(whole: Path) -> None:
     assert info.config["task_options"]["target"] == [1.0, 0.5]
 
 
+def test_an_aimed_lamp_run_keeps_its_lamp(tmp_path: Path) -> None:
+    db = tmp_path / "aimed.db"
+    assert main([*arguments(generations=1, lamp="aimed"), "--db", str(db)]) == 0
+    with RunStore(db) as store:
+        (info,) = store.runs()
+    assert info.config["task_options"] == {"target": [1.0, 0.5], "lamp": "aimed"}
+    assert len(stored(db)[1]) == 6
+
+
 @pytest.mark.parametrize(
     "executor",
     [
@@ -81,6 +90,8 @@ def test_a_killed_3d_run_resumes_to_the_uninterrupted_one(whole: Path, tmp_path:
         ("humanoid3d", {"task": "touch", "target": "0.5,1.2"}, "X,Y,Z in m"),
         ("humanoid3d", {"task": "gesture", "target": "1,2,3"}, "has no --target"),
         ("humanoid3d", {"task": "hop"}, "choose from point, gesture, touch, nose"),
+        ("luxo", {"target": "1.0", "lamp": "aimed"}, "--lamp is for the 3D lamp's hop and limbo"),
+        ("luxo3d", {"lamp": "glass"}, "the lamp is twist or aimed, not 'glass'"),
     ],
 )
 def test_bad_3d_targets_are_one_line(

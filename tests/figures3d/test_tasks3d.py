@@ -18,6 +18,7 @@ from sinews.control.springnet import SpringNetController, SpringNetGenome
 from sinews.experiments.gp.settings import GPSettings, Runtime
 from sinews.experiments.gp.simulate import measure_programs
 from sinews.figures import rollout
+from sinews.figures.aim import Aim, AimedController
 from sinews.figures.figure import FigureError
 from sinews.figures.luxo3d import LuxoShape3D, luxo3d
 from sinews.figures.tasks import TOUCH_HOLD, Task, TaskMeter, make_task
@@ -119,6 +120,67 @@ def test_a_lamp_swivelled_towards_the_x_sees_it_so_and_loses_no_neutral_bonus() 
     assert terms["fallen"] == 0.0 and terms["head"] == 0.0
 
 
+class _Still:
+    """A controller that asks every joint for 0 rad (the aimed joint's ask must be ignored)."""
+
+    def reset(self, n_individuals: int) -> None:
+        pass
+
+    def control(self, t: float, sensors: np.ndarray) -> np.ndarray:
+        return np.zeros((len(sensors), 4))
+
+
+def test_the_aim_rule_turns_by_the_bearing_and_less_near_the_x() -> None:
+    """Target = angle + atan2(left, ahead), the bearing scaled by d / 0.2 m within 0.2 m."""
+    figure = make_task("luxo3d-hop", lamp="aimed").figure
+    aim = Aim("swivel", "q_swivel", "f_target", "l_target", near=0.2)
+    controller = AimedController(_Still(), figure, aim)
+    rows = np.zeros((4, figure.n_sensors))
+    offsets = [(1.0, 1.0), (-1.0, 0.0), (-0.1, 0.0), (0.0, 0.0)]
+    for row, (ahead, left) in zip(rows, offsets, strict=True):
+        row[figure.sensor_index("q_swivel")] = 0.3
+        row[figure.sensor_index("f_target")] = ahead
+        row[figure.sensor_index("l_target")] = left
+    targets = controller.control(0.0, rows)
+    swivel = figure.joints.index("swivel")
+    np.testing.assert_allclose(targets[:, swivel], [0.3 + math.pi / 4, 0.3 + math.pi,
+                                                    0.3 + math.pi / 2, 0.3])  # fmt: skip
+    assert not np.delete(targets, swivel, axis=1).any()
+
+
+def test_the_aimed_lamp_turns_round_to_an_x_behind_it_and_stays_up() -> None:
+    """With its pitch hinges held, the aimed lamp's swivel turns the arm 180° - 45° to face an
+    X behind and to the right, within 2 s, without tipping; the programs drive the pitch
+    hinges alone."""
+    task = make_task("luxo3d-hop", target=(-0.9, -0.9), lamp="aimed")
+    assert task.joints == ("base_hinge", "elbow", "neck") and task.aim is not None
+    figure = task.figure
+    meter = TaskMeter(task, 1)
+    last: list[np.ndarray] = []
+
+    def observe(t: float, sensors: np.ndarray, targets: np.ndarray) -> None:
+        meter(t, sensors, targets)
+        last[:] = [sensors[0].copy()]
+
+    controller = AimedController(HoldPose(figure.neutral), figure, task.aim)
+    rollout(figure, controller, 1, 2.0, nthread=1, observer=observe)
+    end = {name: last[0][k] for k, name in enumerate(figure.sensor_names)}
+    assert end["q_swivel"] < -0.6 * math.pi  # turned right, round to the back
+    assert abs(end["l_target"]) < 0.01 and end["f_target"] > 1.2  # the X straight ahead
+    terms = dict(zip(task.weights, meter.terms()[0], strict=True))
+    assert terms["fallen"] == 0.0 and terms["head"] == 0.0
+
+
+def test_only_a_joint_no_program_drives_can_be_aimed() -> None:
+    task = make_task("luxo3d-hop", lamp="aimed")
+    with pytest.raises(FigureError, match="no controller drives"):
+        dataclasses.replace(task, joints=("swivel", "elbow"))
+    with pytest.raises(FigureError, match="twist or aimed"):
+        make_task("luxo3d-limbo", lamp="glass")
+    with pytest.raises(FigureError, match="near distance"):
+        Aim("swivel", "q_swivel", "f_target", "l_target", near=0.0)
+
+
 def test_hop_targets_are_checked() -> None:
     with pytest.raises(FigureError, match=r"0\.3 to 2 m"):
         make_task("luxo3d-hop", target=(2.0, 1.0))
@@ -184,9 +246,14 @@ def test_a_hand_fanning_the_face_is_no_wave(turn: float, short: tuple[float, flo
     assert short[0] <= -_held(task, fan, swing=("shoulder_z_r", 0.4))["distance"] <= short[1]
 
 
-@pytest.mark.parametrize(("name", "seconds"), [("luxo3d-hop", 1.0), ("humanoid3d-nose", 0.5)])
-def test_gp_scores_do_not_depend_on_batch_or_threads(name: str, seconds: float) -> None:
-    settings = GPSettings(name, {}, seconds=seconds)
+@pytest.mark.parametrize(
+    ("name", "options", "seconds"),
+    [("luxo3d-hop", {}, 1.0), ("luxo3d-hop", {"lamp": "aimed"}, 1.0), ("humanoid3d-nose", {}, 0.5)],
+)
+def test_gp_scores_do_not_depend_on_batch_or_threads(
+    name: str, options: dict[str, Any], seconds: float
+) -> None:
+    settings = GPSettings(name, options, seconds=seconds)
     programs = ramped_half_and_half(settings.pset, np.random.default_rng(5), n_programs=10,
                                     n_trees=len(settings.task.joints), min_depth=2,
                                     max_depth=5)  # fmt: skip

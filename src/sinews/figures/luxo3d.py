@@ -36,7 +36,7 @@ from sinews.figures.figure import Figure
 from sinews.figures.mjcf import Servo, fmt
 from sinews.figures.mjcf3d import FREE_ROOT, document3d, hinge3d
 
-__all__ = ["LuxoShape3D", "luxo3d", "luxo3d_mjcf"]
+__all__ = ["AIMED_LAMP", "LuxoShape3D", "luxo3d", "luxo3d_mjcf"]
 
 
 SWIVEL_SERVO = Servo("swivel", kp=2.0, kv=0.5, torque=1.0)
@@ -86,6 +86,13 @@ class LuxoShape3D:
         Servo("elbow", kp=20.0, kv=0.8, torque=15.0),
         Servo("neck", kp=5.0, kv=0.08, torque=5.0),
     )
+
+
+AIMED_LAMP = LuxoShape3D(neck_axis="pitch", swivel=True, swivel_range=math.tau)
+"""The **aimed lamp**: the planar lamp's three pitch hinges (which make the hop) on a swivel
+that turns a full turn either way. No program drives the swivel: a fixed rule holds the arm's
+plane facing the X (`sinews.figures.tasks3d.SWIVEL_AIM`), as the paper's humanoid held its
+other joints "under simple dynamic control"."""
 
 
 def luxo3d_mjcf(shape: LuxoShape3D = LuxoShape3D(), *, friction: float = 1.0) -> str:

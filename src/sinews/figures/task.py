@@ -18,6 +18,7 @@ import numpy.typing as npt
 
 from sinews.control.music_input import MUSIC_TERMINALS
 from sinews.figures._mujoco import require_mujoco
+from sinews.figures.aim import Aim
 from sinews.figures.figure import Figure, FigureError
 from sinews.limits import MAX_SECONDS
 
@@ -198,6 +199,8 @@ class Task:
         low: ... or while a sensor column reads less than a value, e.g. ``("z_shade",
             0.2)``: a lamp whose shade is under 20 cm is lying down, or None.
         duck: the bar the ``duck`` term measures ducking under, or None.
+        aim: a joint no controller drives that a fixed rule turns to face the goal
+            (`sinews.figures.aim`), or None.
         params: what the task was built with (for configs and titles).
         music: the music terminals the controller hears after the sensors and the goal's
             (see `sinews.control.music_input`; a dance's); their values follow the
@@ -217,6 +220,7 @@ class Task:
     music: tuple[str, ...] = ()
     low: tuple[str, float] | None = None
     duck: Duck | None = None
+    aim: Aim | None = None
 
     def __post_init__(self) -> None:
         unknown = [t for t in self.weights if t not in TERMS]
@@ -225,10 +229,11 @@ class Task:
                               f"and use {TERMS}")  # fmt: skip
         low = () if self.low is None else (self.low[0],)
         duck = () if self.duck is None else (*(c for c, _ in self.duck.points), self.duck.along)
+        aim = () if self.aim is None else (self.aim.angle, self.aim.ahead, self.aim.left)
         if "duck" in self.weights and self.duck is None:
             raise FigureError(f"{self.name}: the duck term needs a bar (Task.duck)")
         for column in (*self.sensors, *self.goal.tracked, *self.goal.target, *self.goal.origin,
-                       *low, *duck):  # fmt: skip
+                       *low, *duck, *aim):  # fmt: skip
             if isinstance(column, str):
                 self.figure.sensor_index(column)
         if not 0 < self.seconds <= MAX_SECONDS:  # also refuses NaN
@@ -239,6 +244,10 @@ class Task:
         for joint in self.joints:
             if joint not in self.figure.joints:
                 raise FigureError(f"{self.name}: the figure has no joint {joint!r}")
+        if self.aim is not None and (
+            self.aim.joint not in self.figure.joints or self.aim.joint in self.joints
+        ):
+            raise FigureError(f"{self.name}: the aimed joint must be one no controller drives")
 
     @property
     def terminals(self) -> tuple[str, ...]:

@@ -24,9 +24,10 @@ import xml.etree.ElementTree as ET
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
+from sinews.figures.aim import Aim
 from sinews.figures.figure import Figure, FigureError
 from sinews.figures.humanoid3d import humanoid3d
-from sinews.figures.luxo3d import LuxoShape3D, luxo3d
+from sinews.figures.luxo3d import AIMED_LAMP, LuxoShape3D, luxo3d
 from sinews.figures.mjcf import fmt
 from sinews.figures.task import STYLE, TOUCH_HOLD, Goal, Task, Wave, dance_task, standing_height
 
@@ -34,6 +35,7 @@ __all__ = [
     "ARM_L",
     "ARM_R",
     "HUMANOID3D_DANCE",
+    "LAMPS",
     "LUXO3D_JOINTS",
     "LUXO3D_SENSORS",
     "TASKS_3D",
@@ -96,6 +98,21 @@ RESTING = LuxoShape3D().base_half_height
 mid-hop above it at the end is not on it (until 2026-11-27 the goal counted x and y alone)."""
 
 
+LAMPS: Mapping[str, LuxoShape3D] = {"twist": LuxoShape3D(), "aimed": AIMED_LAMP}
+"""The 3D lamps a task can use: the twisting lamp (the default: the paper's 3 hinges, the neck
+twisting the shade) and the aimed lamp (its swivel held facing the X by `SWIVEL_AIM`)."""
+SWIVEL_AIM = Aim("swivel", angle="q_swivel", ahead="f_target", left="l_target")
+"""The aimed lamp's rule: the swivel turns the arm's plane to face the X."""
+
+
+def _lamp(name: str, lamp: str) -> tuple[Figure, Aim | None]:
+    """The lamp called ``lamp`` (`LAMPS`) and the rule that aims it, if any."""
+    if lamp not in LAMPS:
+        raise FigureError(f"{name}: the lamp is {' or '.join(LAMPS)}, not {lamp!r}")
+    shape = LAMPS[lamp]
+    return luxo3d(shape), SWIVEL_AIM if shape.swivel else None
+
+
 def _lamp_task(
     name: str,
     figure: Figure,
@@ -103,6 +120,7 @@ def _lamp_task(
     weights: Mapping[str, float],
     seconds: float,
     params: Mapping[str, Any],
+    aim: Aim | None,
 ) -> Task:
     return Task(
         name=name,
@@ -113,27 +131,31 @@ def _lamp_task(
         weights=weights,
         seconds=seconds,
         params=params,
+        aim=aim,
     )
 
 
-def luxo3d_hop(target: Sequence[float] = (1.0, 0.5), *, seconds: float = 5.0) -> Task:
+def luxo3d_hop(
+    target: Sequence[float] = (1.0, 0.5), *, seconds: float = 5.0, lamp: str = "twist"
+) -> Task:
     """Hop to the X at (x, y) on the floor, 0.3–2 m from the start in any direction.
 
-    The lamp starts facing +x, so a target off the axis means turning as well
-    as hopping. The main goal is the base centre's distance from the X on the
-    floor at the end (`RESTING`); style as the planar lamp's (`STYLE`), and ``spot``
-    (the mean distance from the X over the trial: how soon it gets there) at weight 0
-    unless a run file weighs it (docs/figures3d.md).
+    The lamp (`LAMPS`) starts facing +x, so a target off the axis means turning as
+    well as hopping (the aimed lamp's rule does the turning). The main goal is the
+    base centre's distance from the X on the floor at the end (`RESTING`); style as
+    the planar lamp's (`STYLE`), and ``spot`` (the mean distance from the X over the
+    trial: how soon it gets there) at weight 0 unless a run file weighs it
+    (docs/figures3d.md).
     """
     x, y = _check_floor_target("luxo3d-hop", target)
-    lamp = luxo3d()
-    root = ET.fromstring(lamp.xml)
+    body, aim = _lamp("luxo3d-hop", lamp)
+    root = ET.fromstring(body.xml)
     world = root.find("worldbody")
     assert world is not None
     _floor_mark(world, x, y)
-    figure = _refigure(lamp, root, sites=("target",))
+    figure = _refigure(body, root, sites=("target",))
     return _lamp_task("luxo3d-hop", figure, (x, y), {"distance": 1.0, **STYLE, "spot": 0.0},
-                      seconds, {"target": [x, y]})  # fmt: skip
+                      seconds, {"target": [x, y], "lamp": lamp}, aim)  # fmt: skip
 
 
 LIMBO3D_SHARE = 0.8
@@ -147,6 +169,7 @@ def luxo3d_limbo(
     pole_radius: float = 0.02,
     half_length: float = 1.5,
     seconds: float = 5.0,
+    lamp: str = "twist",
 ) -> Task:
     """Limbo: hop to the X passing under a bar whose underside is ``pole_height`` m up.
 
@@ -157,12 +180,12 @@ def luxo3d_limbo(
     hitting his head on the limbo pole").
     """
     x, y = _check_floor_target("luxo3d-limbo", target)
-    lamp = luxo3d()
+    body, aim = _lamp("luxo3d-limbo", lamp)
     if pole_height is None:
-        pole_height = round(LIMBO3D_SHARE * standing_height(lamp), 4)
+        pole_height = round(LIMBO3D_SHARE * standing_height(body), 4)
     if not 0.0 < pole_height < 1.0:
         raise FigureError("luxo3d-limbo: the bar must be 0-1 m high")
-    root = ET.fromstring(lamp.xml)
+    root = ET.fromstring(body.xml)
     world = root.find("worldbody")
     assert world is not None
     _floor_mark(world, x, y)
@@ -179,10 +202,10 @@ def luxo3d_limbo(
                                  "size": fmt(pole_radius / 2, half_length, board),
                                  "pos": fmt(0, 0, pole_radius + board),
                                  **collide, "rgba": "0.8 0.3 0.2 0.35"})  # fmt: skip
-    figure = _refigure(lamp, root, sites=("target",), touch_bodies=("pole",))
+    figure = _refigure(body, root, sites=("target",), touch_bodies=("pole",))
     weights = {"distance": 1.0, **STYLE, "touch": 5.0}
-    params = {"pole_height": pole_height, "target": [x, y]}
-    return _lamp_task("luxo3d-limbo", figure, (x, y), weights, seconds, params)
+    params = {"pole_height": pole_height, "target": [x, y], "lamp": lamp}
+    return _lamp_task("luxo3d-limbo", figure, (x, y), weights, seconds, params, aim)
 
 
 def luxo3d_dance(*, seconds: float = 10.0) -> Task:

@@ -90,6 +90,7 @@ DEFAULTS: dict[str, Any] = {
     "task": None,
     "target": None,
     "pole_height": None,
+    "lamp": None,
     "seconds": None,
     "control_hz": GPSettings.control_hz,
     "physics_hz": GPSettings.physics_hz,
@@ -100,7 +101,7 @@ DEFAULTS: dict[str, Any] = {
 }
 """The paper's run (250 programs, 50 generations) unless told otherwise; the task's
 terms make the fitness, and style is phased in from a tenth of the run to its end."""
-_KIND_KEYS = ("task", "target", "pole_height", "seconds", "control_hz", "physics_hz",
+_KIND_KEYS = ("task", "target", "pole_height", "lamp", "seconds", "control_hz", "physics_hz",
               "functions", "erc_range", "until", "song")  # fmt: skip
 DANCE_FUNCTIONS = (*BASIC_FUNCTIONS, "sin", "cos")
 """A dance's default function set: the paper's, with ``sin`` and ``cos`` for the beat."""
@@ -134,6 +135,8 @@ class GPKind:
                    "(humanoid)."),
         KindOption("pole_height", float, "GP limbo: the bar's underside, m (default 80% of "
                    "the lamp)."),
+        KindOption("lamp", str, "GP 3D lamp hop or limbo: twist (default: the neck twists the "
+                   "shade) or aimed (a swivel a fixed rule keeps facing the X)."),
         KindOption("seconds", float, "Length of each trial (GP: default the task's)."),
         KindOption("until", float, "GP: stop at the first generation with a program this "
                    "close to the goal (m) and clean (no head contact, never down, the bar "
@@ -162,7 +165,7 @@ class GPKind:
             options: command-line values (None = not given): population,
                 generations, seed, seconds, strategy, task (``hop``, ``limbo``,
                 ``reach``, ``nose``), target (m; ``"x,z"`` for the humanoid),
-                pole_height (m).
+                pole_height (m), lamp (the 3D lamp).
         """
         check_options(options, DEFAULTS, CONTROLLER)
         given = {**file_values, **{k: v for k, v in options.items() if v is not None}}
@@ -328,7 +331,8 @@ def _settings(info: RunInfo) -> GPSettings:
 
 
 def _task(figure: str, given: Mapping[str, Any]) -> Task:
-    """The task named by ``task``, ``target``, ``pole_height`` and ``seconds`` for ``figure``."""
+    """The task named by ``task``, ``target``, ``pole_height``, ``lamp`` and ``seconds`` for
+    ``figure``."""
     if figure not in TASKS:
         raise SinewsError(f"GP has no task for the {figure}; figures: {', '.join(TASKS)}")
     choices = TASKS[figure]
@@ -345,6 +349,10 @@ def _task(figure: str, given: Mapping[str, Any]) -> Task:
         if name not in ("luxo-limbo", "luxo3d-limbo"):
             raise SinewsError("--pole-height is for the limbo")
         options["pole_height"] = _number(given["pole_height"], "pole_height")
+    if given.get("lamp") is not None:
+        if name not in ("luxo3d-hop", "luxo3d-limbo"):
+            raise SinewsError("--lamp is for the 3D lamp's hop and limbo")
+        options["lamp"] = str(given["lamp"])
     if given.get("seconds") is not None:
         options["seconds"] = _number(given["seconds"], "seconds")
     return make_task(name, **options)

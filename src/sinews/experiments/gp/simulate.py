@@ -21,6 +21,7 @@ from sinews.control.music_input import MusicInput, music_table
 from sinews.control.protocol import Controller
 from sinews.experiments.gp.settings import GPSettings, Runtime
 from sinews.figures import RolloutResult, rollout
+from sinews.figures.aim import AimedController
 from sinews.figures.tasks import Task, TaskMeter
 
 __all__ = ["Measured", "measure_programs", "wiring", "with_music"]
@@ -74,6 +75,8 @@ def measure_programs(
         programs, wiring(task), parallel=runtime.parallel_interpreter
     )
     controller, beats = with_music(settings, programs_controller)
+    if task.aim is not None:
+        controller = AimedController(controller, task.figure, task.aim)
     meter = TaskMeter(task, len(programs), beats=beats)
     result = rollout(
         task.figure, controller, len(programs), task.seconds,
