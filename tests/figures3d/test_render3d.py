@@ -35,12 +35,17 @@ def hop() -> Any:
     return model
 
 
-def _figure(image: np.ndarray) -> int:
-    """Pixels of the figures' orange or blue (the floor is grey, the sky pale blue-white)."""
+def _figure_mask(image: np.ndarray) -> np.ndarray:
+    """Where the figures' orange or blue is (the floor is grey, the sky pale blue-white)."""
     r, g, b = (image[..., k].astype(int) for k in range(3))
     orange = (r - b > 60) & (g < r - 25)
     blue = (b - r > 60) & (b > 60)
-    return int((orange | blue).sum())
+    return orange | blue
+
+
+def _figure(image: np.ndarray) -> int:
+    """Pixels of the figures."""
+    return int(_figure_mask(image).sum())
 
 
 def _red(image: np.ndarray) -> int:
@@ -64,6 +69,22 @@ def test_the_camera_follows_the_figure(hop: Any) -> None:
         view.frame(hop.qpos0)
         image = view.frame(moved)  # no lag given: the camera jumps
     assert _figure(image) > 60
+
+
+@pytest.mark.parametrize("heading", [180.0, 225.0])
+def test_a_strobe_shows_the_poses_side_by_side_whichever_way_the_figure_went(
+    hop: Any, heading: float, tmp_path: Path
+) -> None:
+    """Eight poses 0.2 m apart along a line (backwards, backwards and to the right): the
+    default camera sees them from the side, so at least five stand apart in the picture
+    (from the usual front-right view, 3 and 4 groups)."""
+    qpos = np.repeat(hop.qpos0[None], 8, axis=0)
+    step = np.radians(heading)
+    qpos[:, :2] = np.arange(8)[:, None] * 0.2 * np.array([np.cos(step), np.sin(step)])
+    image = np.asarray(Image.open(save_strobe_3d(hop, qpos, tmp_path / "s.png", count=8,
+                                                 size=(320, 180))))  # fmt: skip
+    columns = np.flatnonzero(_figure_mask(image).any(axis=0))
+    assert np.count_nonzero(np.diff(columns) > 1) + 1 >= 5
 
 
 def test_png_strobe_and_mp4_files(hop: Any, tmp_path: Path) -> None:

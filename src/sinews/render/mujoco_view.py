@@ -311,6 +311,19 @@ def default_camera(model: mujoco.MjModel, qpos: npt.ArrayLike) -> FollowCamera:
     return FollowCamera(distance=1.5 * tall + 1.0, height=0.5 * tall, keep=keep)
 
 
+def _across(camera: FollowCamera, path_xy: FloatArray) -> FollowCamera:
+    """``camera`` looking at the middle of the (T, 2) path and its kept point, from the right
+    of the travel if that is over 0.3 m."""
+    points = path_xy if camera.keep is None else np.vstack([path_xy, camera.keep[:2]])
+    middle = (points.min(axis=0) + points.max(axis=0)) / 2
+    chosen = replace(camera, keep=(float(middle[0]), float(middle[1]), camera.height),
+                     keep_share=1.0)  # fmt: skip
+    dx, dy = path_xy[-1] - path_xy[0]
+    if math.hypot(dx, dy) < 0.3:
+        return chosen
+    return replace(chosen, azimuth=math.degrees(math.atan2(dy, dx)) + 90.0)
+
+
 def _views(model: mujoco.MjModel, qpos: FloatArray, size: tuple[int, int],
            camera: FollowCamera | None, shadows: bool = True) -> MujocoView:  # fmt: skip
     chosen = camera if camera is not None else default_camera(model, qpos[0])
@@ -350,7 +363,9 @@ def save_strobe_3d(
     shadows: bool = True,
 ) -> Path:
     """``count`` poses spread over a recording in one PNG, earlier ones faded; the camera
-    frames the whole path (it looks at the middle of where the root went)."""
+    frames the whole path. The default camera looks at the middle of the path and the
+    target, from the right of the travel (first pose to last) once it is over 0.3 m, so
+    the poses stand side by side whichever way the figure went."""
     from PIL import Image as PILImage
 
     suffix_of(path, (".png",))
@@ -358,9 +373,9 @@ def save_strobe_3d(
     if not 2 <= count <= 64:
         raise RenderError(f"a strobe shows 2 to 64 poses, got {count}")
     picks = np.unique(np.linspace(0, len(frames) - 1, count).round().astype(int))
-    chosen = camera if camera is not None else default_camera(model, frames[0])
     path_xy = frames[:, :2]
     span = float(np.ptp(path_xy, axis=0).max())
+    chosen = camera if camera is not None else _across(default_camera(model, frames[0]), path_xy)
     if chosen.keep is None:  # look at the middle of the path
         middle = (path_xy.min(axis=0) + path_xy.max(axis=0)) / 2
         chosen = replace(chosen, keep=(float(middle[0]), float(middle[1]), chosen.height),
