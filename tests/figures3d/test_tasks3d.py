@@ -78,6 +78,25 @@ def test_the_lamp_sees_the_goal_in_its_heading_frame() -> None:
     assert terms["fallen"] == 0.0 and terms["head"] == 0.0
 
 
+@pytest.mark.parametrize("lamp", ["twist", "aimed"])
+def test_the_x_is_on_the_floor_a_lamp_resting_on_it_is_there(lamp: str) -> None:
+    """At the end one lamp rests on the X (its base at its resting height), one is 13 cm above
+    it: 0 and 13 cm from the goal (until 2026-11-29 the goal hung 2 cm above the floor)."""
+    task = make_task("luxo3d-hop", target=(0.8, -0.6), lamp=lamp)
+    figure, meter = task.figure, TaskMeter(task, 2)
+    for k in range(11):
+        sensors = np.zeros((2, figure.n_sensors))
+        sensors[:, figure.sensor_index("time")] = k / 10
+        sensors[:, figure.sensor_index("root_x")] = 0.8
+        sensors[:, figure.sensor_index("root_y")] = -0.6
+        sensors[1, figure.sensor_index("root_z")] = 0.13 * k / 10
+        meter(k / 10, sensors, np.zeros((2, figure.n_actuators)))
+    distance = meter.terms()[:, list(task.weights).index("distance")]
+    np.testing.assert_allclose(distance, [0.0, -0.13], atol=1e-12)
+    at_rest = _held(task, {}, seconds=0.3)
+    assert at_rest["distance"] == pytest.approx(-1.0, abs=0.005)  # 1 m away, on the floor
+
+
 def _swivel_hop(target: tuple[float, float]) -> Task:
     """The hop task with the swivel lamp in place of the twisting one."""
     swivel = luxo3d(LuxoShape3D(swivel=True, neck_axis="fixed"))

@@ -93,9 +93,11 @@ def _check_floor_target(name: str, target: Sequence[float]) -> tuple[float, floa
     return x, y
 
 
-RESTING = LuxoShape3D().base_half_height
-"""The base centre's height when the lamp stands: the X is there, on the floor, so a lamp in
-mid-hop above it at the end is not on it (until 2026-11-27 the goal counted x and y alone)."""
+ON_THE_FLOOR = 0.0
+"""The goal's ``root_z``: the base resting on the floor (``root_z`` is the base centre's height
+above its rest pose's), so a lamp in mid-hop above the X at the end is not on it. From
+2026-11-27 to 2026-11-29 this was the base's half height, 2 cm, read as a height above the
+floor: the goal hung 2 cm above the resting base (docs/figures3d.md)."""
 
 
 LAMPS: Mapping[str, LuxoShape3D] = {"twist": LuxoShape3D(), "aimed": AIMED_LAMP}
@@ -125,7 +127,7 @@ def _lamp_task(
     return Task(
         name=name,
         figure=figure,
-        goal=Goal(tracked=("root_x", "root_y", "root_z"), target=(*target, RESTING), names=()),
+        goal=Goal(("root_x", "root_y", "root_z"), target=(*target, ON_THE_FLOOR), names=()),
         joints=LUXO3D_JOINTS,
         sensors=LUXO3D_SENSORS,
         weights=weights,
@@ -142,7 +144,7 @@ def luxo3d_hop(
 
     The lamp (`LAMPS`) starts facing +x, so a target off the axis means turning as
     well as hopping (the aimed lamp's rule does the turning). The main goal is the
-    base centre's distance from the X on the floor at the end (`RESTING`); style as
+    base centre's distance from the X on the floor at the end (`ON_THE_FLOOR`); style as
     the planar lamp's (`STYLE`), and ``spot`` (the mean distance from the X over the
     trial: how soon it gets there) at weight 0 unless a run file weighs it
     (docs/figures3d.md).
