@@ -140,6 +140,7 @@ def test_the_form_starts_a_dance_and_a_3d_run(
     page.select_option("#form-task", "dance")
     expect(page.locator("#form-song-box")).to_be_visible()
     expect(page.locator("#form-target-box")).to_be_hidden()
+    expect(page.locator("#form-lamp-box")).to_be_hidden()
     songs = page.eval_on_selector_all("#form-song option", "(o) => o.map((e) => e.value)")
     assert songs == ["demo-groove", "demo-sway"]
     page.set_input_files("#form-upload", str(dance_db.parent / "clicks.wav"))  # the dancers' upload
@@ -170,6 +171,9 @@ def test_the_form_starts_a_dance_and_a_3d_run(
     expect(page.locator("#form-song-box")).to_be_hidden()
     assert page.input_value("#form-target-y") == "0.5"  # the task's own default target
     expect(page.locator("#form-target-z")).to_be_hidden()
+    lamps = page.eval_on_selector_all("#form-lamp option", "(o) => o.map((e) => e.value)")
+    assert lamps == ["twist", "aimed"] and page.input_value("#form-lamp") == "twist"
+    page.select_option("#form-lamp", "aimed")
     page.fill("#form-target-x", "0.8")
     page.fill("#form-target-y", "0.6")
     page.fill("#form-seconds", "0.5")
@@ -181,8 +185,10 @@ def test_the_form_starts_a_dance_and_a_3d_run(
     assert page.evaluate("figures.pack.header.drawer") == "solid"
     assert page.evaluate("figures.run.song") is None
     expect(page.locator("#song-name")).to_have_text("")
-    info = ok(dance_server, f"/api/figures/runs/{page.evaluate('figures.run.id')}")
-    assert info["task"] == "luxo3d-hop"
+    run_id = page.evaluate("figures.run.id")
+    assert ok(dance_server, f"/api/figures/runs/{run_id}")["task"] == "luxo3d-hop"
+    with RunStore(dance_db) as store:
+        assert store.run(run_id).config["task_options"] == {"target": [0.8, 0.6], "lamp": "aimed"}
 
 
 def test_bad_dance_forms_and_songs_get_one_line(dance_server: StudioServer) -> None:
@@ -201,6 +207,8 @@ def test_bad_dance_forms_and_songs_get_one_line(dance_server: StudioServer) -> N
         ({**base, "task": "dance", "song": "../../etc/passwd"}, "no song '../../etc/passwd'"),
         ({**base, "task": "hop", "song": "demo-sway"}, "the hop task has no song"),
         ({**base, "figure": "luxo3d", "task": "hop", "target": 1}, "target is x, y in metres"),
+        ({**base, "figure": "luxo3d", "task": "hop", "lamp": "glass"}, "lamp is one of twist, ai"),
+        ({**base, "task": "hop", "lamp": "aimed"}, "the luxo hop task has no choice of lamp"),
         ({**base, "figure": "humanoid3d", "task": "nose", "target": [1, 1, 1]}, "has no target"),
         ({**base, "controller": "springnet", "figure": "luxo3d"}, "figure must be one of"),
         ({**base, "controller": "springnet", "task": "dance"}, "a dance needs a song"),

@@ -34,7 +34,9 @@ def test_the_page_lists_cli_runs_and_sends_generations_as_pose_packs(
         "limbo": {"target": [1.0], "axes": "x"},
         "dance": {"song": True},
     }
-    assert gp["luxo3d"]["hop"] == {"target": [1.0, 0.5], "axes": "xy"}  # the task's default
+    # the task's default target, and the lamps it can use
+    assert gp["luxo3d"]["hop"] == {"lamps": ["twist", "aimed"], "target": [1.0, 0.5], "axes": "xy"}
+    assert gp["luxo3d"]["limbo"]["lamps"] == ["twist", "aimed"]
     assert gp["humanoid3d"]["touch"]["axes"] == "xyz" and gp["humanoid3d"]["gesture"] == {}
     assert "snake" not in gp
     assert all(tasks["dance"] == {"song": True} for tasks in gp.values())  # every figure dances

@@ -40,8 +40,8 @@ __all__ = ["figure_routes"]
 _ID = 2**62
 MAX_WEIGHT = 1000.0
 """Largest style weight the sliders may set."""
-_FORM = ("figure", "controller", "task", "target", "song", "population", "generations", "seconds",
-         "seed")  # fmt: skip
+_FORM = ("figure", "controller", "task", "target", "lamp", "song", "population", "generations",
+         "seconds", "seed")  # fmt: skip
 
 
 def _worker(request: Request) -> Worker:

@@ -29,6 +29,7 @@ from sinews.experiments.kinds import RunKind, kind_of, run_kind
 from sinews.experiments.motion_log import MotionLog
 from sinews.experiments.springnet.dance import DANCE_FIGURES
 from sinews.figures.tasks import TASKS as TASK_FACTORIES
+from sinews.figures.tasks3d import LAMPS
 from sinews.store import RunInfo, RunStore
 from sinews.studio.figure_songs import FigureSongs
 
@@ -111,7 +112,8 @@ TRAVEL = "travel"
 def form_tasks() -> dict[str, dict[str, dict[str, dict[str, Any]]]]:
     """The new-run form's choices: controller → figure → task → what the task takes:
     ``target`` (its default, m, one number per axis) with its ``axes`` (``"x"``, ``"xz"``,
-    ``"xy"`` or ``"xyz"``), or ``song`` (a dance)."""
+    ``"xy"`` or ``"xyz"``), ``lamps`` (the 3D lamps it can use, the default first), or
+    ``song`` (a dance)."""
     nets: dict[str, dict[str, dict[str, Any]]] = {figure: {TRAVEL: {}} for figure in PLANAR}
     for figure in DANCE_FIGURES:
         nets[figure]["dance"] = {"song": True}
@@ -125,12 +127,15 @@ def form_tasks() -> dict[str, dict[str, dict[str, dict[str, Any]]]]:
 def _takes(short: str, name: str, preset: Mapping[str, Any]) -> dict[str, Any]:
     if short == "dance":
         return {"song": True}
-    parameter = inspect.signature(TASK_FACTORIES[name]).parameters.get("target")
+    parameters = inspect.signature(TASK_FACTORIES[name]).parameters
+    takes: dict[str, Any] = {"lamps": list(LAMPS)} if "lamp" in parameters else {}
+    parameter = parameters.get("target")
     if parameter is None or "target" in preset:
-        return {}
+        return takes
     default = parameter.default
     values = [default] if isinstance(default, int | float) else list(default)
-    return {"target": values, "axes": TARGET_AXES.get(name, "X").replace(",", "").lower()}
+    axes = TARGET_AXES.get(name, "X").replace(",", "").lower()
+    return {**takes, "target": values, "axes": axes}
 
 
 def run_form(body: Mapping[str, Any], songs: FigureSongs) -> tuple[RunKind, str, dict[str, Any]]:
@@ -138,7 +143,8 @@ def run_form(body: Mapping[str, Any], songs: FigureSongs) -> tuple[RunKind, str,
 
     Args:
         body: ``figure``, ``controller``, and optionally ``task`` (one of `form_tasks`),
-            ``target`` (metres: a number, or a list of one per axis), ``song`` (a dance:
+            ``target`` (metres: a number, or a list of one per axis), ``lamp`` (one of the
+            task's ``lamps``), ``song`` (a dance:
             the id of a song of the studio's library), ``population``, ``generations``,
             ``seconds``, ``seed``.
         songs: the studio's songs.
@@ -175,6 +181,13 @@ def run_form(body: Mapping[str, Any], songs: FigureSongs) -> tuple[RunKind, str,
         if len(values) != len(takes["target"]):
             raise FigureRunError(f"the {short} target is {', '.join(takes['axes'])} in metres")
         options["target"] = ",".join(repr(_number(v, "target", -10.0, 10.0)) for v in values)
+    lamp = body.get("lamp")
+    if lamp is not None:
+        if "lamps" not in takes:
+            raise FigureRunError(f"the {figure} {short} task has no choice of lamp")
+        if lamp not in takes["lamps"]:
+            raise FigureRunError(f"the lamp is one of {', '.join(takes['lamps'])}")
+        options["lamp"] = lamp
     if takes.get("song"):
         if body.get("song") is None:
             raise FigureRunError("a dance needs a song: choose one of the studio's songs")

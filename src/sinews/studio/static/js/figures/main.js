@@ -430,6 +430,8 @@ function formTasks() {
   $("form-floor").hidden = !takes.target;
   for (const axis of "xyz") $(`form-target-${axis}`).hidden = !axes.includes(axis);
   $("form-song-box").hidden = !takes.song;
+  $("form-lamp-box").hidden = !takes.lamps;
+  if (takes.lamps) fill($("form-lamp"), takes.lamps);
   drawFloor();
 }
 
@@ -487,6 +489,7 @@ function formBody() {
   const takes = formTask(), axes = takes.axes || "";
   if (takes.target) body.target = axes.length === 1 ? number("form-target-x") : [...axes].map((a) => number(`form-target-${a}`));
   if (takes.song) body.song = $("form-song").value;
+  if (takes.lamps) body.lamp = $("form-lamp").value;
   return body;
 }
 
