@@ -20,7 +20,10 @@ the lower arm turns on the base about the vertical (hinge ``swivel``, a
 gentle servo: a 3 rad step turns the arm in ~0.5 s without tipping the lamp),
 the shade is fixed, and the heading frame follows the arm (the figure's
 ``heading_joint``). It did not hop to the X more often than the twisting lamp
-(docs/figures3d.md, session 11), so it is not the default.
+(docs/figures3d.md, session 11), so it is not the default. The **aimed lamp**
+(`AIMED_LAMP`: the pitch neck and a full-turn swivel that a fixed rule, not a
+program, keeps facing the X) is the one that reaches off-axis targets
+(docs/figures3d.md, session 28); it has four hinges, so it is not the default either.
 
 At rest every hinge is at 0, the lower arm leans back, the upper arm forward,
 the head points down and forward (the planar lamp's pose), and the heading
