@@ -139,21 +139,12 @@ def test_a_lamp_swivelled_towards_the_x_sees_it_so_and_loses_no_neutral_bonus() 
     assert terms["fallen"] == 0.0 and terms["head"] == 0.0
 
 
-class _Still:
-    """A controller that asks every joint for 0 rad (the aimed joint's ask must be ignored)."""
-
-    def reset(self, n_individuals: int) -> None:
-        pass
-
-    def control(self, t: float, sensors: np.ndarray) -> np.ndarray:
-        return np.zeros((len(sensors), 4))
-
-
 def test_the_aim_rule_turns_by_the_bearing_and_less_near_the_x() -> None:
     """Target = angle + atan2(left, ahead), the bearing scaled by d / 0.2 m within 0.2 m."""
     figure = make_task("luxo3d-hop", lamp="aimed").figure
     aim = Aim("swivel", "q_swivel", "f_target", "l_target", near=0.2)
-    controller = AimedController(_Still(), figure, aim)
+    controller = AimedController(HoldPose(np.zeros(figure.n_actuators)), figure, aim)
+    controller.reset(4)
     rows = np.zeros((4, figure.n_sensors))
     offsets = [(1.0, 1.0), (-1.0, 0.0), (-0.1, 0.0), (0.0, 0.0)]
     for row, (ahead, left) in zip(rows, offsets, strict=True):

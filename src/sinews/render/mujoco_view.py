@@ -311,13 +311,18 @@ def default_camera(model: mujoco.MjModel, qpos: npt.ArrayLike) -> FollowCamera:
     return FollowCamera(distance=1.5 * tall + 1.0, height=0.5 * tall, keep=keep)
 
 
+def _at_middle(camera: FollowCamera, points: FloatArray) -> FollowCamera:
+    """``camera`` looking at the middle of the (N, 2) floor points."""
+    middle = (points.min(axis=0) + points.max(axis=0)) / 2
+    return replace(camera, keep=(float(middle[0]), float(middle[1]), camera.height),
+                   keep_share=1.0)  # fmt: skip
+
+
 def _across(camera: FollowCamera, path_xy: FloatArray) -> FollowCamera:
     """``camera`` looking at the middle of the (T, 2) path and its kept point, from the right
     of the travel if that is over 0.3 m."""
     points = path_xy if camera.keep is None else np.vstack([path_xy, camera.keep[:2]])
-    middle = (points.min(axis=0) + points.max(axis=0)) / 2
-    chosen = replace(camera, keep=(float(middle[0]), float(middle[1]), camera.height),
-                     keep_share=1.0)  # fmt: skip
+    chosen = _at_middle(camera, points)
     dx, dy = path_xy[-1] - path_xy[0]
     if math.hypot(dx, dy) < 0.3:
         return chosen
@@ -375,11 +380,10 @@ def save_strobe_3d(
     picks = np.unique(np.linspace(0, len(frames) - 1, count).round().astype(int))
     path_xy = frames[:, :2]
     span = float(np.ptp(path_xy, axis=0).max())
-    chosen = camera if camera is not None else _across(default_camera(model, frames[0]), path_xy)
-    if chosen.keep is None:  # look at the middle of the path
-        middle = (path_xy.min(axis=0) + path_xy.max(axis=0)) / 2
-        chosen = replace(chosen, keep=(float(middle[0]), float(middle[1]), chosen.height),
-                         keep_share=1.0)  # fmt: skip
+    if camera is None:
+        chosen = _across(default_camera(model, frames[0]), path_xy)
+    else:
+        chosen = camera if camera.keep is not None else _at_middle(camera, path_xy)
     chosen = replace(chosen, lag=0.0, distance=chosen.distance + 0.8 * span)
     with MujocoView(model, size[0], size[1], camera=chosen, shadows=shadows) as view:
         # the camera looks at the middle of the path: aim from the first pose
