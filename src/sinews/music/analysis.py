@@ -7,8 +7,9 @@
    window early.
 2. Levels in dB relative to the song's loudness reference, the 99th
    percentile of all its band levels, so that mastering loudness cancels out.
-3. Per-band onsets and adaptive triggers (`onsets`); the onsets pooled by register are the
-   envelope that tempo and beats are tracked on (`beats`).
+3. Per-band onsets and adaptive triggers (`onsets`).
+4. Tempo and beats (`beats`), tracked on the learnt beat activation of the onset-window
+   levels and onsets plus the onsets pooled by register (`beatnet.beat_strength`).
 """
 
 from __future__ import annotations
@@ -24,7 +25,8 @@ import numpy as np
 import numpy.typing as npt
 
 from sinews.limits import check_number
-from sinews.music.beats import beat_phase, onset_envelope, track
+from sinews.music.beatnet import beat_strength
+from sinews.music.beats import beat_phase, track
 from sinews.music.decode import Audio, check_readable_file, load_audio
 from sinews.music.errors import AudioError
 from sinews.music.features import ANALYSIS_VERSION, MusicFeatures
@@ -43,6 +45,7 @@ __all__ = [
     "MIN_BPM",
     "analyse",
     "analyse_file",
+    "band_levels",
     "default_cache_dir",
     "shift_beats",
 ]
@@ -108,20 +111,10 @@ def analyse(
     if bpm is not None and not (math.isfinite(bpm) and bpm > 0):
         raise ValueError(f"bpm must be positive, got {bpm}")
     edges = band_edges(n_bands)
-    sr = audio.sample_rate
-    levels_abs = _decibels(
-        band_power(audio.samples, sr, fps, edges, window_length(sr, LEVEL_WINDOW_S))
-    )
-    reference = float(np.percentile(levels_abs, REFERENCE_PERCENTILE))
-    silent = reference < SILENCE_DB
-    levels = _relative(levels_abs, reference, LEVEL_FLOOR_DB, silent)
-    onset_abs = _decibels(
-        band_power(audio.samples, sr, fps, edges, window_length(sr, ONSET_WINDOW_S))
-    )
-    onset_levels = _relative(onset_abs, reference, ONSET_FLOOR_DB, silent)
+    levels, onset_levels = band_levels(audio, fps, edges)
     onset = onset_strength(onset_levels, fps)
     triggers = adaptive_triggers(onset, onset_levels, fps, _TRIGGERS)
-    tempo, beats = track(onset_envelope(onset, band_centres(edges)), fps, bpm)
+    tempo, beats = track(beat_strength(onset_levels, onset, band_centres(edges), fps), fps, bpm)
     tempo = tempo if math.isfinite(tempo) else 0.0
     return MusicFeatures(
         fps=float(fps),
@@ -136,6 +129,29 @@ def analyse(
         beats=beats,
         beat_phase=beat_phase(beats, len(levels), fps, tempo),
         song_hash=song_hash or _samples_sha256(audio),
+    )
+
+
+def band_levels(
+    audio: Audio, fps: float, edges: npt.NDArray[np.float64]
+) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]]:
+    """The song's (T, B) band levels and onset-window band levels, in dB re its loudness.
+
+    Levels are floored at `LEVEL_FLOOR_DB`, onset-window levels at `ONSET_FLOOR_DB`; a silent
+    song (loudness reference under `SILENCE_DB`) is all floor.
+    """
+    sr = audio.sample_rate
+    levels_abs = _decibels(
+        band_power(audio.samples, sr, fps, edges, window_length(sr, LEVEL_WINDOW_S))
+    )
+    reference = float(np.percentile(levels_abs, REFERENCE_PERCENTILE))
+    silent = reference < SILENCE_DB
+    onset_abs = _decibels(
+        band_power(audio.samples, sr, fps, edges, window_length(sr, ONSET_WINDOW_S))
+    )
+    return (
+        _relative(levels_abs, reference, LEVEL_FLOOR_DB, silent),
+        _relative(onset_abs, reference, ONSET_FLOOR_DB, silent),
     )
 
 

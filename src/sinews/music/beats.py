@@ -42,6 +42,7 @@ if TYPE_CHECKING:
 __all__ = [
     "beat_phase",
     "estimate_tempo",
+    "first_heard",
     "onset_envelope",
     "tempo_candidates",
     "track",
@@ -303,14 +304,17 @@ def _smoothed(normalised: npt.NDArray[np.float64], period: float) -> npt.NDArray
     return np.convolve(normalised, kernel)[kernel_half : kernel_half + len(normalised)]
 
 
+def first_heard(envelope: npt.NDArray[np.float64]) -> int:
+    """The first frame whose envelope reaches `HEARD` of its 95th percentile (0 if none)."""
+    heard = np.flatnonzero(envelope >= HEARD * np.percentile(envelope, 95.0))
+    return int(heard[0]) if len(heard) else 0
+
+
 def _from_first_heard(
     frames: npt.NDArray[np.int64], normalised: npt.NDArray[np.float64], slack: int
 ) -> npt.NDArray[np.int64]:
     """``frames`` without those more than ``slack`` frames before the first sound (`HEARD`)."""
-    heard = np.flatnonzero(normalised >= HEARD * np.percentile(normalised, 95.0))
-    if len(heard) == 0:
-        return frames
-    return frames[frames >= heard[0] - slack]
+    return frames[frames >= first_heard(normalised) - slack]
 
 
 @njit(cache=True)
