@@ -153,7 +153,8 @@ def beat_activation(
     nets = nets or _shipped()
     n_frames, n_bands = onset_levels.shape
     if n_bands != NET_BANDS:
-        grid = np.linspace(0.0, n_bands - 1.0, NET_BANDS)
+        # band k's centre lies (k + 0.5) / B of the way up the log-frequency range
+        grid = (np.arange(NET_BANDS) + 0.5) * n_bands / NET_BANDS - 0.5
         onset_levels, onset = (_resample(a.T, grid).T for a in (onset_levels, onset))
     times = np.arange(n_frames) / fps
     net_frames = np.arange(max(1, round(n_frames * NET_FPS / fps))) / NET_FPS
