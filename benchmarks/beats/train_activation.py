@@ -14,8 +14,8 @@ with the network that never saw it, beside the baseline; `train` fits one networ
 every seen set (`SEEN`) and writes them together (the shipped activation is their mean);
 `score` scores one set with the networks of a weights file (default: the shipped ones),
 beside the baseline. Beats are tracked on `sinews.music.beatnet.beat_strength`, as in
-`analyse`. All settings
-(`Settings`) were fixed before the first run (docs/beats.md, "A network with seconds of context").
+`analyse`. All settings (`Settings`) were fixed before the first run (docs/beats.md, "A network
+with seconds of context").
 """
 
 from __future__ import annotations
@@ -34,7 +34,8 @@ sys.path.insert(0, str(HERE))
 from fetch import SETS, default_cache, excerpt_path, load_corpus  # noqa: E402
 from metrics import score  # noqa: E402
 
-FPS = 60.0
+from sinews.music.beatnet import NET_FPS as FPS  # noqa: E402
+
 SEEN = SETS[:-1]
 """Every set but the newest (confirm10), which is kept unseen for one final score."""
 FOLDS = (
@@ -114,7 +115,7 @@ def fit(cache: Path, train_ids: list[str], settings: Settings):  # type: ignore[
     """Train a network on ``train_ids``; returns its `sinews.music.beatnet.BeatNet`."""
     import torch
 
-    from sinews.music.beatnet import BeatNet, net_input
+    from sinews.music.beatnet import net_input
 
     torch.set_num_threads(1)  # two trainings side by side beat one on two threads here
     torch.manual_seed(settings.seed)
@@ -157,15 +158,18 @@ def fit(cache: Path, train_ids: list[str], settings: Settings):  # type: ignore[
             opt.step()
             total += float(loss)
         print(f"epoch {epoch + 1}: loss {total / steps:.4f}", file=sys.stderr)
-    return model.export(BeatNet, settings)
+    return model.export()
 
 
-def _make_model_class():  # type: ignore[no-untyped-def]
+def _model(n_in: int, settings: Settings):  # type: ignore[no-untyped-def]
+    """The torch twin of `sinews.music.beatnet.BeatNet`, untrained (``export()`` gives that)."""
     import torch
     from torch import nn
 
+    from sinews.music.beatnet import BeatNet
+
     class Model(nn.Module):
-        def __init__(self, n_in: int, settings: Settings) -> None:
+        def __init__(self) -> None:
             super().__init__()
             c = settings.channels
             self.inp = nn.Conv1d(n_in, c, 1)
@@ -183,11 +187,11 @@ def _make_model_class():  # type: ignore[no-untyped-def]
                 h = h + mix(self.drop(nn.functional.elu(conv(h))))
             return self.out(nn.functional.elu(h))[:, 0, :]
 
-        def export(self, cls, settings: Settings):  # type: ignore[no-untyped-def]
+        def export(self) -> BeatNet:
             def arr(t: torch.Tensor) -> np.ndarray:
                 return t.detach().numpy().astype(np.float32)
 
-            return cls(
+            return BeatNet(
                 in_w=arr(self.inp.weight[:, :, 0].T),
                 in_b=arr(self.inp.bias),
                 conv_w=np.stack([arr(c.weight.permute(2, 1, 0)) for c in self.convs]),
@@ -199,11 +203,7 @@ def _make_model_class():  # type: ignore[no-untyped-def]
                 dilations=np.array(settings.dilations, dtype=np.int64),
             )
 
-    return Model
-
-
-def _model(n_in: int, settings: Settings):  # type: ignore[no-untyped-def]
-    return _make_model_class()(n_in, settings)
+    return Model()
 
 
 def rate(cache: Path, nets, ids: list[str]) -> list[dict]:  # type: ignore[no-untyped-def]

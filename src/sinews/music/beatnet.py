@@ -156,18 +156,21 @@ def beat_activation(
         # band k's centre lies (k + 0.5) / B of the way up the log-frequency range
         grid = (np.arange(NET_BANDS) + 0.5) * n_bands / NET_BANDS - 0.5
         onset_levels, onset = (_resample(a.T, grid).T for a in (onset_levels, onset))
-    times = np.arange(n_frames) / fps
+    if fps == NET_FPS:
+        return _mean_probability(nets, net_input(onset_levels, onset))
     net_frames = np.arange(max(1, round(n_frames * NET_FPS / fps))) / NET_FPS
-    if fps != NET_FPS:
-        at = net_frames * fps
-        onset_levels, onset = (_resample(a, at) for a in (onset_levels, onset))
-    features = net_input(onset_levels, onset)
-    probability = np.mean(
+    onset_levels, onset = (_resample(a, net_frames * fps) for a in (onset_levels, onset))
+    probability = _mean_probability(nets, net_input(onset_levels, onset))
+    return np.interp(np.arange(n_frames) / fps, net_frames, probability)
+
+
+def _mean_probability(
+    nets: Sequence[BeatNet], features: npt.NDArray[np.float32]
+) -> npt.NDArray[np.float64]:
+    """(T,) the mean over ``nets`` of the sigmoid of their logits for (T, F) ``features``."""
+    return np.mean(
         [1.0 / (1.0 + np.exp(-net.logits(features).astype(np.float64))) for net in nets], axis=0
     )
-    if fps != NET_FPS:
-        probability = np.interp(times, net_frames, probability)
-    return probability
 
 
 def beat_strength(
