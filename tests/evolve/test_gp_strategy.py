@@ -11,8 +11,14 @@ from hypothesis import strategies as st
 
 from gp_helpers import make_pset, seeds
 from sinews.control.gp import program_depth, program_size
-from sinews.evolve import StrategyError
-from sinews.evolve.gp import GPStrategy, GPVariation, proportionate, tournament_select
+from sinews.evolve import FitnessSpec, StrategyError
+from sinews.evolve.gp import (
+    GPStrategy,
+    GPVariation,
+    pareto_fronts,
+    proportionate,
+    tournament_select,
+)
 
 
 def _strategy(seed: int = 0, size: int = 20, **options: object) -> GPStrategy:
@@ -65,6 +71,7 @@ def test_out_of_turn_calls_are_refused() -> None:
         {"tweak_scale": float("nan")},
         {"soft_share": 1.5},
         {"soft_share": -0.1},
+        {"soft_share": 0.5, "selection": "pareto"},
     ],
 )
 def test_bad_options_are_refused(options: dict[str, object]) -> None:
@@ -77,7 +84,7 @@ def test_bad_options_are_refused(options: dict[str, object]) -> None:
 @settings(max_examples=12, deadline=None)
 @given(
     seed=seeds,
-    selection=st.sampled_from(["tournament", "proportionate"]),
+    selection=st.sampled_from(["tournament", "proportionate", "pareto"]),
     mutation=st.sampled_from([0.0, 0.3]),
     any_slot=st.booleans(),
 )
@@ -200,6 +207,66 @@ def test_stochastic_ranking_judges_a_share_of_tournaments_by_the_soft_sums() -> 
     wins = np.bincount(mixed, minlength=4) / 10_000
     present = 1 - (3 / 4) ** 4  # the chance a contestant is drawn into a tournament
     np.testing.assert_allclose(wins[[0, 3]], [0.55 * present, 0.45 * present], atol=0.02)
+
+
+def _dominates(a: np.ndarray, b: np.ndarray) -> bool:
+    return bool((a >= b).all() and (a > b).any())
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    points=st.lists(
+        st.tuples(*[st.sampled_from([-np.inf, -2.0, -1.0, -0.5, 0.0, 0.5]) for _ in range(2)]),
+        min_size=1, max_size=30,
+    )
+)  # fmt: skip
+def test_pareto_merit_puts_every_program_above_those_it_dominates(
+    points: list[tuple[float, float]],
+) -> None:
+    objectives = np.array(points)
+    merit = pareto_fronts(objectives)
+    assert sorted(merit.tolist()) == list(range(1, len(points) + 1))  # a strict order
+    finite = np.isfinite(objectives).all(axis=1)
+    for i, a in enumerate(objectives):
+        for j, b in enumerate(objectives):
+            if finite[i] and (not finite[j] or _dominates(a, b)):
+                assert merit[i] > merit[j]
+
+
+def test_pareto_fronts_of_sum_and_fitness_are_those_of_sum_and_loss() -> None:
+    """With Deb's rule in the fitness, (weighted sum, fitness) dominate as (sum, -loss) do."""
+    spec = FitnessSpec(main="distance", weights={"distance": 1.0, "head": 3.0},
+                       constraints=("head",))  # fmt: skip
+    rng = np.random.default_rng(4)
+    faulty = rng.random(60) < 0.5  # passers with small faults, the clean stalled far off
+    distance = np.where(faulty, -0.1, -0.5) - 0.1 * rng.random(60)
+    terms = np.column_stack([distance, np.where(faulty, -0.05 * rng.random(60), 0.0)])
+    terms[:5] = terms[5]  # some copies
+    failed = np.zeros(60, dtype=bool)
+    soft, fitness = spec.weighted(terms, failed, 0), spec.combine(terms, failed, 0)
+    by_fitness = np.column_stack([soft, fitness])
+    by_loss = np.column_stack([soft, terms[:, 1]])
+    for i in range(60):
+        for j in range(60):
+            assert _dominates(by_fitness[i], by_fitness[j]) == _dominates(by_loss[i], by_loss[j])
+    clean_best = np.flatnonzero(terms[:, 1] == 0)[np.argmax(soft[terms[:, 1] == 0])]
+    merit = pareto_fronts(by_fitness)
+    faulty_top = np.argmax(np.where(terms[:, 1] < 0, soft, -np.inf))
+    assert soft[faulty_top] > soft[clean_best]  # a faulty program with a higher sum
+    top = np.argsort(-merit)[:2]  # the front's two ends: the clean best and that one
+    assert set(top.tolist()) == {clean_best, faulty_top}
+
+
+def test_pareto_selection_breeds_by_fitness_until_told_the_sums() -> None:
+    plain, pareto = _strategy(6), _strategy(6, selection="pareto")
+    for gp in (plain, pareto):
+        programs = gp.ask()
+        gp.tell(_score(programs))
+    assert plain.ask() == pareto.ask()  # no sums: the same tournaments on fitness
+    for gp in (plain, pareto):
+        asked = list(gp.population)
+        gp.tell(_score(asked), soft=-_score(asked))
+    assert plain.ask() != pareto.ask()
 
 
 def test_soft_sums_steer_breeding_and_survive_a_checkpoint() -> None:

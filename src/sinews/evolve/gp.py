@@ -14,7 +14,9 @@ children (made in pairs), ``mutation_rate`` subtree mutants (0 by default, "we
 did not use mutation"), ``tweak_rate`` constant tweaks (0 by default; not the
 paper's: `sinews.control.gp.tweak_constants`) and the rest reproduced copies,
 parents chosen by tournament or fitness-proportionately. ``elites`` best individuals may be
-copied first (0 in the paper).
+copied first (0 in the paper). With constraints (`sinews.evolve.FitnessSpec`), a
+``"pareto"`` tournament (not the paper's) judges two objectives at once, the weighted sum
+and the loss on the constraints (`pareto_fronts`).
 
 A person may steer it (the studio's hand picks, docs/figure-studio.md):
 told ``picks`` beside the fitness, the picks are the parents of every
@@ -61,11 +63,17 @@ from sinews.evolve._state import decode_array, decode_rng, encode_array, encode_
 from sinews.evolve.errors import StrategyError
 from sinews.evolve.strategy import AskTell, GenomeSpace
 
-__all__ = ["GPStrategy", "GPVariation", "proportionate", "tournament_select"]
+__all__ = [
+    "GPStrategy",
+    "GPVariation",
+    "pareto_fronts",
+    "proportionate",
+    "tournament_select",
+]
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
-Selection = Literal["tournament", "proportionate"]
+Selection = Literal["tournament", "proportionate", "pareto"]
 
 
 @dataclass(frozen=True)
@@ -78,7 +86,9 @@ class GPVariation:
         tweak_rate: share made by a Gaussian nudge of one tree's constants (paper:
             0); the rest are copies.
         tweak_scale: the nudge's standard deviation as a share of the ERC range.
-        selection: ``"tournament"`` or ``"proportionate"`` (Koza's adjusted fitness).
+        selection: ``"tournament"``, ``"proportionate"`` (Koza's adjusted fitness) or
+            ``"pareto"``: tournaments by `pareto_fronts` on (weighted sum, fitness) while the
+            constraints rank (``tell``'s ``soft`` given), by fitness before.
         tournament_size: contestants per tournament (3: with 7 the lamp's
             hop runs locked onto one lineage within a few generations).
         any_slot: crossover may swap subtrees between different joints' trees.
@@ -91,7 +101,8 @@ class GPVariation:
             a share of the population (at least once); 1.0 turns the guard off.
         soft_share: stochastic ranking (Runarsson & Yao 2000; not the paper's): the
             share of tournaments won by the weighted sum alone (``tell``'s ``soft``),
-            the others by the fitness, which ranks the constraints; 0 by default.
+            the others by the fitness, which ranks the constraints; 0 by default (only
+            with ``"tournament"`` selection).
     """
 
     crossover_rate: float = 0.9
@@ -129,14 +140,16 @@ class GPVariation:
             )
         if not 0 < self.tweak_scale <= 10:
             raise StrategyError(f"tweak_scale must be in (0, 10], got {self.tweak_scale}")
-        if self.selection not in ("tournament", "proportionate"):
+        if self.selection not in ("tournament", "proportionate", "pareto"):
             raise StrategyError(
-                f"selection must be tournament or proportionate, got {self.selection!r}"
+                f"selection must be tournament, proportionate or pareto, got {self.selection!r}"
             )
         if self.tournament_size < 1 or self.elites < 0 or self.mutation_depth < 0:
             raise StrategyError("tournament_size must be >= 1, elites and mutation_depth >= 0")
         if not 0 <= self.soft_share <= 1:
             raise StrategyError(f"soft_share must be in [0, 1], got {self.soft_share}")
+        if self.soft_share > 0 and self.selection != "tournament":
+            raise StrategyError("soft_share needs selection = tournament")
         if not 0 < self.max_copies <= 1:
             raise StrategyError(f"max_copies must be in (0, 1], got {self.max_copies}")
         if not 0 <= low <= high <= self.max_depth:
@@ -173,6 +186,47 @@ def tournament_select(
         values = np.where(by_soft[:, None], soft[contestants], values)
     winners = values == values.max(axis=1, keepdims=True)
     return np.where(winners, contestants, len(fitness)).min(axis=1).astype(np.int64)
+
+
+def pareto_fronts(objectives: FloatArray) -> FloatArray:
+    """(P,) a merit (higher is better) that orders (P, M) objectives (higher is better) as
+    NSGA-II does (Deb et al. 2002): by non-dominated front first, then by crowding distance
+    within the front (its ends first), ties by lowest index.
+
+    A row with a non-finite objective (a failed rollout) is in the last front, uncrowded.
+    Given (weighted sum, fitness) with Deb's constraint rule (`FitnessSpec.combine`), the
+    fronts are those of (weighted sum, -loss on the constraints): a clean program dominates
+    a faulty one exactly when its sum is no lower, and faulty ones compare by sum and loss.
+    """
+    n = len(objectives)
+    finite = np.asarray(np.isfinite(objectives).all(axis=1))
+    o = np.where(finite[:, None], objectives, 0.0)
+    at_least = (o[:, None, :] >= o[None, :, :]).all(axis=2)
+    above = (o[:, None, :] > o[None, :, :]).any(axis=2)
+    dominates = at_least & above & finite[:, None] & finite[None, :]  # [i, j]: i dominates j
+    front = np.full(n, -1, dtype=np.int64)
+    left = finite.copy()
+    level = 0
+    while left.any():
+        first = left & ~(dominates & left[:, None]).any(axis=0)
+        front[first] = level
+        left &= ~first
+        level += 1
+    front[~finite] = level
+    crowding = np.zeros(n)
+    for k in range(level):
+        members = np.flatnonzero(front == k)
+        for values in o[members].T:
+            rank = np.argsort(values, kind="stable")
+            ordered, ascending = members[rank], values[rank]
+            crowding[ordered[[0, -1]]] = np.inf
+            span = ascending[-1] - ascending[0]
+            if span > 0:
+                crowding[ordered[1:-1]] += (ascending[2:] - ascending[:-2]) / span
+    order = np.lexsort((np.arange(n), -crowding, front))
+    merit = np.empty(n)
+    merit[order] = np.arange(n, 0, -1, dtype=np.float64)
+    return merit
 
 
 def proportionate(fitness: FloatArray, count: int, *, rng: np.random.Generator) -> IntArray:
@@ -263,10 +317,13 @@ class GPStrategy(AskTell[list[Program]]):
     def _select(self, count: int) -> IntArray:
         assert self._fitness is not None
         v = self.variation
-        if v.selection == "tournament":
-            return tournament_select(self._fitness, count, size=v.tournament_size, rng=self.rng,
-                                     soft=self._soft, soft_share=v.soft_share)  # fmt: skip
-        return proportionate(self._fitness, count, rng=self.rng)
+        if v.selection == "proportionate":
+            return proportionate(self._fitness, count, rng=self.rng)
+        if v.selection == "pareto" and self._soft is not None:
+            merit = pareto_fronts(np.column_stack([self._soft, self._fitness]))
+            return tournament_select(merit, count, size=v.tournament_size, rng=self.rng)
+        return tournament_select(self._fitness, count, size=v.tournament_size, rng=self.rng,
+                                 soft=self._soft, soft_share=v.soft_share)  # fmt: skip
 
     def _breed(self) -> tuple[list[Program], IntArray]:
         assert self._population is not None and self._fitness is not None

@@ -140,14 +140,16 @@ def test_a_run_stored_before_its_task_gained_a_term_goes_on_rated_by_its_own(
         np.testing.assert_array_equal(table.fitness[rows], combined)
 
 
+@pytest.mark.parametrize("selection", ["soft_share = 0.5", 'selection = "pareto"'])
 def test_soft_breeding_is_told_the_weighted_sums_and_resumes_bit_for_bit(
-    whole: Path, tmp_path: Path
+    whole: Path, tmp_path: Path, selection: str
 ) -> None:
-    """Stochastic ranking (``soft_share``) with the constraints from generation 0: the
-    strategy hears each generation's sums without the ranking; a cut run resumes."""
+    """Stochastic ranking (``soft_share``) or Pareto tournaments with the constraints from
+    generation 0: the strategy hears each generation's sums without the ranking; a cut run
+    resumes."""
     config = tmp_path / "soft.toml"
     config.write_text('constraints = ["head", "fallen"]\nphase_in = { start = 0, full = 7 }\n'
-                      '[strategy]\nname = "gp"\nsoft_share = 0.5\n')  # fmt: skip
+                      f'[strategy]\nname = "gp"\n{selection}\n')  # fmt: skip
     soft, cut = tmp_path / "soft.db", tmp_path / "cut.db"
     assert main([*arguments(), "--config", str(config), "--db", str(soft)]) == 0
     assert main([*arguments(generations=3), "--config", str(config), "--db", str(cut)]) == 0
