@@ -15,7 +15,7 @@ from sinews.evolve import FitnessSpec, StrategyError
 from sinews.evolve.gp import (
     GPStrategy,
     GPVariation,
-    pareto_fronts,
+    pareto_merit,
     proportionate,
     tournament_select,
 )
@@ -224,7 +224,7 @@ def test_pareto_merit_puts_every_program_above_those_it_dominates(
     points: list[tuple[float, float]],
 ) -> None:
     objectives = np.array(points)
-    merit = pareto_fronts(objectives)
+    merit = pareto_merit(objectives)
     assert sorted(merit.tolist()) == list(range(1, len(points) + 1))  # a strict order
     finite = np.isfinite(objectives).all(axis=1)
     for i, a in enumerate(objectives):
@@ -233,7 +233,7 @@ def test_pareto_merit_puts_every_program_above_those_it_dominates(
                 assert merit[i] > merit[j]
 
 
-def test_pareto_fronts_of_sum_and_fitness_are_those_of_sum_and_loss() -> None:
+def test_pareto_merit_of_sum_and_fitness_are_those_of_sum_and_loss() -> None:
     """With Deb's rule in the fitness, (weighted sum, fitness) dominate as (sum, -loss) do."""
     spec = FitnessSpec(main="distance", weights={"distance": 1.0, "head": 3.0},
                        constraints=("head",))  # fmt: skip
@@ -250,7 +250,7 @@ def test_pareto_fronts_of_sum_and_fitness_are_those_of_sum_and_loss() -> None:
         for j in range(60):
             assert _dominates(by_fitness[i], by_fitness[j]) == _dominates(by_loss[i], by_loss[j])
     clean_best = np.flatnonzero(terms[:, 1] == 0)[np.argmax(soft[terms[:, 1] == 0])]
-    merit = pareto_fronts(by_fitness)
+    merit = pareto_merit(by_fitness)
     faulty_top = np.argmax(np.where(terms[:, 1] < 0, soft, -np.inf))
     assert soft[faulty_top] > soft[clean_best]  # a faulty program with a higher sum
     top = np.argsort(-merit)[:2]  # the front's two ends: the clean best and that one

@@ -16,7 +16,7 @@ paper's: `sinews.control.gp.tweak_constants`) and the rest reproduced copies,
 parents chosen by tournament or fitness-proportionately. ``elites`` best individuals may be
 copied first (0 in the paper). With constraints (`sinews.evolve.FitnessSpec`), a
 ``"pareto"`` tournament (not the paper's) judges two objectives at once, the weighted sum
-and the loss on the constraints (`pareto_fronts`).
+and the loss on the constraints (`pareto_merit`).
 
 A person may steer it (the studio's hand picks, docs/figure-studio.md):
 told ``picks`` beside the fitness, the picks are the parents of every
@@ -66,7 +66,7 @@ from sinews.evolve.strategy import AskTell, GenomeSpace
 __all__ = [
     "GPStrategy",
     "GPVariation",
-    "pareto_fronts",
+    "pareto_merit",
     "proportionate",
     "tournament_select",
 ]
@@ -87,7 +87,7 @@ class GPVariation:
             0); the rest are copies.
         tweak_scale: the nudge's standard deviation as a share of the ERC range.
         selection: ``"tournament"``, ``"proportionate"`` (Koza's adjusted fitness) or
-            ``"pareto"``: tournaments by `pareto_fronts` on (weighted sum, fitness) while the
+            ``"pareto"``: tournaments by `pareto_merit` on (weighted sum, fitness) while the
             constraints rank (``tell``'s ``soft`` given), by fitness before.
         tournament_size: contestants per tournament (3: with 7 the lamp's
             hop runs locked onto one lineage within a few generations).
@@ -188,7 +188,7 @@ def tournament_select(
     return np.where(winners, contestants, len(fitness)).min(axis=1).astype(np.int64)
 
 
-def pareto_fronts(objectives: FloatArray) -> FloatArray:
+def pareto_merit(objectives: FloatArray) -> FloatArray:
     """(P,) a merit (higher is better) that orders (P, M) objectives (higher is better) as
     NSGA-II does (Deb et al. 2002): by non-dominated front first, then by crowding distance
     within the front (its ends first), ties by lowest index.
@@ -203,7 +203,7 @@ def pareto_fronts(objectives: FloatArray) -> FloatArray:
     o = np.where(finite[:, None], objectives, 0.0)
     at_least = (o[:, None, :] >= o[None, :, :]).all(axis=2)
     above = (o[:, None, :] > o[None, :, :]).any(axis=2)
-    dominates = at_least & above & finite[:, None] & finite[None, :]  # [i, j]: i dominates j
+    dominates = at_least & above  # [i, j]: i dominates j (only rows still left are compared)
     front = np.full(n, -1, dtype=np.int64)
     left = finite.copy()
     level = 0
@@ -276,6 +276,7 @@ class GPStrategy(AskTell[list[Program]]):
     ) -> None:
         super().__init__(population_size=population_size, rng=rng)
         self._soft: FloatArray | None = None
+        self._merit: FloatArray | None = None  # pareto_merit of the last tell, made once
         if n_trees < 1:
             raise StrategyError(f"n_trees must be at least 1, got {n_trees}")
         self.pset = pset
@@ -305,7 +306,7 @@ class GPStrategy(AskTell[list[Program]]):
         """
         checked = None if soft is None else self._check_fitness(soft)
         self._record_tell(fitness=fitness, picks=picks)
-        self._soft = checked
+        self._soft, self._merit = checked, None
 
     def _first(self) -> list[Program]:
         low, high = self.variation.init_depth
@@ -320,8 +321,9 @@ class GPStrategy(AskTell[list[Program]]):
         if v.selection == "proportionate":
             return proportionate(self._fitness, count, rng=self.rng)
         if v.selection == "pareto" and self._soft is not None:
-            merit = pareto_fronts(np.column_stack([self._soft, self._fitness]))
-            return tournament_select(merit, count, size=v.tournament_size, rng=self.rng)
+            if self._merit is None:
+                self._merit = pareto_merit(np.column_stack([self._soft, self._fitness]))
+            return tournament_select(self._merit, count, size=v.tournament_size, rng=self.rng)
         return tournament_select(self._fitness, count, size=v.tournament_size, rng=self.rng,
                                  soft=self._soft, soft_share=v.soft_share)  # fmt: skip
 
