@@ -64,6 +64,9 @@ def files(tmp_path_factory: pytest.TempPathFactory) -> Path:
     (folder / "longint.toml").write_text("population = " + "9" * 5000 + "\n")
     (folder / "infseed.toml").write_text("seed = 1e999\n")
     (folder / "softshare.toml").write_text('[strategy]\nname = "gp"\nsoft_share = 2\n')
+    (folder / "softpareto.toml").write_text(
+        '[strategy]\nname = "gp"\nselection = "pareto"\nsoft_share = 0.45\n'
+    )
     (folder / "lamplist.toml").write_text('lamp = ["aimed"]\n')
     made = run(folder, "dance", "g.json", "-o", "d.png", "--seconds", "1", "--trajectory", "t.npz")
     assert made.returncode == 0, made.stderr
@@ -129,6 +132,7 @@ CASES = [
     ["evolve", "luxo", "--controller", "gp", "--config", "longint.toml", "--db", "r.db"],
     ["evolve", "luxo", "--controller", "gp", "--config", "infseed.toml", "--db", "r.db"],
     ["evolve", "luxo", "--controller", "gp", "--config", "softshare.toml", "--db", "r.db"],
+    ["evolve", "luxo", "--controller", "gp", "--config", "softpareto.toml", "--db", "r.db"],
     ["evolve", "luxo3d", "--controller", "gp", "--lamp", "glass", "--db", "r.db"],
     ["evolve", "luxo", "--controller", "gp", "--lamp", "aimed", "--db", "r.db"],
     ["evolve", "luxo3d", "--controller", "gp", "--config", "lamplist.toml", "--db", "r.db"],
