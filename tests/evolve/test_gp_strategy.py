@@ -72,8 +72,6 @@ def test_out_of_turn_calls_are_refused() -> None:
         {"soft_share": 1.5},
         {"soft_share": -0.1},
         {"soft_share": 0.5, "selection": "pareto"},
-        {"clones_last": True},
-        {"clones_last": "yes", "selection": "pareto"},
         {"any_slot": 1},
     ],
 )
@@ -227,21 +225,13 @@ def test_pareto_merit_puts_every_program_above_those_it_dominates(
     points: list[tuple[float, float]],
 ) -> None:
     objectives = np.array(points)
+    merit = pareto_merit(objectives)
+    assert sorted(merit.tolist()) == list(range(1, len(points) + 1))  # a strict order
     finite = np.isfinite(objectives).all(axis=1)
-    clone = np.array([any((objectives[k] == row).all() for k in range(i)) for i, row in
-                      enumerate(objectives)]) & finite  # fmt: skip
-    plain, clones_last = pareto_merit(objectives), pareto_merit(objectives, clones_last=True)
-    for merit in (plain, clones_last):
-        assert sorted(merit.tolist()) == list(range(1, len(points) + 1))  # a strict order
     for i, a in enumerate(objectives):
         for j, b in enumerate(objectives):
             if finite[i] and (not finite[j] or _dominates(a, b)):
-                assert plain[i] > plain[j]
-            if finite[i] and not clone[i] and (not finite[j] or clone[j] or _dominates(a, b)):
-                assert clones_last[i] > clones_last[j]
-    distinct = finite & ~clone  # the distinct rows ranked as if the clones were not there
-    alone = pareto_merit(objectives[distinct])
-    assert (np.argsort(alone) == np.argsort(clones_last[distinct])).all()
+                assert merit[i] > merit[j]
 
 
 def test_pareto_merit_of_sum_and_fitness_are_those_of_sum_and_loss() -> None:

@@ -103,8 +103,6 @@ class GPVariation:
             share of tournaments won by the weighted sum alone (``tell``'s ``soft``),
             the others by the fitness, which ranks the constraints; 0 by default (only
             with ``"tournament"`` selection).
-        clones_last: with ``"pareto"`` selection, a program whose (weighted sum, fitness)
-            repeats an earlier one's ranks after every distinct one (`pareto_merit`).
     """
 
     crossover_rate: float = 0.9
@@ -121,7 +119,6 @@ class GPVariation:
     mutation_depth: int = 4
     max_copies: float = 0.05
     soft_share: float = 0.0
-    clones_last: bool = False
 
     def __post_init__(self) -> None:
         for option in dataclasses.fields(self):  # a run file's values, as their types say
@@ -155,8 +152,6 @@ class GPVariation:
             raise StrategyError(f"soft_share must be in [0, 1], got {self.soft_share}")
         if self.soft_share > 0 and self.selection != "tournament":
             raise StrategyError("soft_share needs selection = tournament")
-        if self.clones_last and self.selection != "pareto":
-            raise StrategyError("clones_last needs selection = pareto")
         if not 0 < self.max_copies <= 1:
             raise StrategyError(f"max_copies must be in (0, 1], got {self.max_copies}")
         if not 0 <= low <= high <= self.max_depth:
@@ -195,7 +190,7 @@ def tournament_select(
     return np.where(winners, contestants, len(fitness)).min(axis=1).astype(np.int64)
 
 
-def _nsga_merit(objectives: FloatArray) -> FloatArray:
+def pareto_merit(objectives: FloatArray) -> FloatArray:
     """(P,) a merit (higher is better) that orders (P, M) objectives (higher is better) as
     NSGA-II does (Deb et al. 2002): by non-dominated front first, then by crowding distance
     within the front (its ends first), ties by lowest index.
@@ -233,30 +228,6 @@ def _nsga_merit(objectives: FloatArray) -> FloatArray:
     order = np.lexsort((np.arange(n), -crowding, front))
     merit = np.empty(n)
     merit[order] = np.arange(n, 0, -1, dtype=np.float64)
-    return merit
-
-
-def pareto_merit(objectives: FloatArray, *, clones_last: bool = False) -> FloatArray:
-    """(P,) a merit (higher is better) that orders (P, M) objectives (higher is better) as
-    NSGA-II does (`_nsga_merit`): non-dominated fronts, then crowding, ties by lowest index.
-
-    With ``clones_last``, a row that repeats an earlier row's objectives exactly ranks after
-    every distinct one (and the clones among themselves as NSGA-II would), so one behaviour
-    cannot fill the first front by its copies; a failed row (non-finite) is still last.
-    """
-    n = len(objectives)
-    finite = np.asarray(np.isfinite(objectives).all(axis=1))
-    clone = np.zeros(n, dtype=bool)
-    if clones_last:
-        kept = np.flatnonzero(finite)
-        first = np.unique(objectives[kept], axis=0, return_index=True)[1]
-        clone[kept] = True
-        clone[kept[first]] = False
-    merit = np.empty(n)
-    below = 0
-    for block in (~finite, clone, finite & ~clone):  # worst first
-        merit[block] = _nsga_merit(objectives[block]) + below
-        below += int(block.sum())
     return merit
 
 
@@ -353,8 +324,7 @@ class GPStrategy(AskTell[list[Program]]):
             return proportionate(self._fitness, count, rng=self.rng)
         if v.selection == "pareto" and self._soft is not None:
             if self._merit is None:
-                objectives = np.column_stack([self._soft, self._fitness])
-                self._merit = pareto_merit(objectives, clones_last=v.clones_last)
+                self._merit = pareto_merit(np.column_stack([self._soft, self._fitness]))
             return tournament_select(self._merit, count, size=v.tournament_size, rng=self.rng)
         return tournament_select(self._fitness, count, size=v.tournament_size, rng=self.rng,
                                  soft=self._soft, soft_share=v.soft_share)  # fmt: skip
