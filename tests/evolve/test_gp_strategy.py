@@ -73,10 +73,6 @@ def test_out_of_turn_calls_are_refused() -> None:
         {"soft_share": -0.1},
         {"soft_share": 0.5, "selection": "pareto"},
         {"any_slot": 1},
-        {"polish_from": -1},
-        {"polish_from": 2.5},
-        {"polish_keep": 0.0},
-        {"polish_keep": 1.0},
     ],
 )
 def test_bad_options_are_refused(options: dict[str, object]) -> None:
@@ -131,31 +127,6 @@ def test_tweaked_children_keep_their_parents_shape_and_change_a_constant() -> No
             assert sum(c != p for c, p in zip(child, parent, strict=True)) == 1
             tweaked += 1
     assert 10 <= tweaked <= 20  # 20 tweaks; a parent without constants comes back as is
-
-
-@pytest.mark.parametrize("selection", ["tournament", "pareto"])
-def test_polishing_keeps_the_best_distinct_programs_and_nudges_the_rest(selection: str) -> None:
-    gp = _strategy(2, size=40, selection=selection, polish_from=2, max_copies=1.0)
-    previous, bests = gp.ask(), []
-    for generation in range(1, 6):
-        fitness = _score(previous)
-        gp.tell(fitness, soft=-fitness)  # the sums run against the fitness: two objectives
-        bests.append(fitness.max())
-        programs, parents = gp.ask(), gp.parents.tolist()
-        if generation == 1:
-            assert any(second >= 0 for _, second in parents)  # bred as before
-        else:
-            both = np.column_stack([-fitness, fitness])
-            ranking = pareto_merit(both) if selection == "pareto" else fitness
-            best_first = [previous[i] for i in np.argsort(-ranking, kind="stable")]
-            assert programs[:8] == list(dict.fromkeys(best_first))[:8]  # the best fifth, once
-            for child, (first, second) in zip(programs[8:], parents[8:], strict=True):
-                assert second == -1
-                shapes = zip(child, previous[first], strict=True)
-                assert all((c.code == p.code).all() for c, p in shapes)  # constants nudged
-            assert GPStrategy.from_bytes(gp.to_bytes()).to_bytes() == gp.to_bytes()
-        previous = programs
-    assert bests[2:] == sorted(bests[2:])  # while polishing the best is never lost
 
 
 @pytest.mark.parametrize("size", [7, 9])

@@ -30,12 +30,6 @@ in docs/gp.md): a child over the `Limits` is drawn again at other points, not
 replaced by a copy of its parent (`within_limits`); and no program may stand
 more than ``max_copies`` (a share of P) times in a generation: an extra copy
 is mutated instead.
-
-From generation ``polish_from`` on (not the paper's; 0: never) breeding turns into an
-elitist local search: the best ``polish_keep`` share of distinct programs (by the Pareto
-merit, or the fitness without it) is kept, and every other child is a constant nudge of a
-tournament winner, at a scale drawn log-uniformly from a tenth of ``tweak_scale`` to all of
-it, so a program that nearly meets the task is refined in small continuous moves, never lost.
 """
 
 from __future__ import annotations
@@ -109,8 +103,6 @@ class GPVariation:
             share of tournaments won by the weighted sum alone (``tell``'s ``soft``),
             the others by the fitness, which ranks the constraints; 0 by default (only
             with ``"tournament"`` selection).
-        polish_from: the first generation bred by polishing (see above; 0: never).
-        polish_keep: the share of the population kept unchanged while polishing.
     """
 
     crossover_rate: float = 0.9
@@ -127,8 +119,6 @@ class GPVariation:
     mutation_depth: int = 4
     max_copies: float = 0.05
     soft_share: float = 0.0
-    polish_from: int = 0
-    polish_keep: float = 0.2
 
     def __post_init__(self) -> None:
         for option in dataclasses.fields(self):  # a run file's values, as their types say
@@ -162,10 +152,6 @@ class GPVariation:
             raise StrategyError(f"soft_share must be in [0, 1], got {self.soft_share}")
         if self.soft_share > 0 and self.selection != "tournament":
             raise StrategyError("soft_share needs selection = tournament")
-        if self.polish_from < 0:
-            raise StrategyError(f"polish_from must be a generation >= 0, got {self.polish_from}")
-        if not 0 < self.polish_keep < 1:
-            raise StrategyError(f"polish_keep must be in (0, 1), got {self.polish_keep}")
         if not 0 < self.max_copies <= 1:
             raise StrategyError(f"max_copies must be in (0, 1], got {self.max_copies}")
         if not 0 <= low <= high <= self.max_depth:
@@ -331,31 +317,21 @@ class GPStrategy(AskTell[list[Program]]):
             min_depth=low, max_depth=high, max_size=self.variation.max_size,
         )  # fmt: skip
 
-    def _pareto(self) -> FloatArray | None:
-        """(P,) `pareto_merit` of the last tell (made once), or None where it does not rank."""
-        assert self._fitness is not None
-        if self.variation.selection != "pareto" or self._soft is None:
-            return None
-        if self._merit is None:
-            self._merit = pareto_merit(np.column_stack([self._soft, self._fitness]))
-        return self._merit
-
     def _select(self, count: int) -> IntArray:
         assert self._fitness is not None
         v = self.variation
         if v.selection == "proportionate":
             return proportionate(self._fitness, count, rng=self.rng)
-        merit = self._pareto()
-        if merit is not None:
-            return tournament_select(merit, count, size=v.tournament_size, rng=self.rng)
+        if v.selection == "pareto" and self._soft is not None:
+            if self._merit is None:
+                self._merit = pareto_merit(np.column_stack([self._soft, self._fitness]))
+            return tournament_select(self._merit, count, size=v.tournament_size, rng=self.rng)
         return tournament_select(self._fitness, count, size=v.tournament_size, rng=self.rng,
                                  soft=self._soft, soft_share=v.soft_share)  # fmt: skip
 
     def _breed(self) -> tuple[list[Program], IntArray]:
         assert self._population is not None and self._fitness is not None
         old, v, size = self._population, self.variation, self.population_size
-        if 0 < v.polish_from <= self.generation + 1:
-            return self._polish()
         bred = size - v.elites
         n_cross = round(v.crossover_rate * bred)
         # each share rounds on its own; one that would overfill the generation is cut
@@ -384,29 +360,6 @@ class GPStrategy(AskTell[list[Program]]):
             parents.append((i, -1))
         for i in self._select(size - len(children)).tolist():
             children.append(old[i])
-            parents.append((i, -1))
-        return self._diverse(children), np.array(parents, dtype=np.int64)
-
-    def _polish(self) -> tuple[list[Program], IntArray]:
-        """A polishing generation: the picks and the best distinct programs kept (the
-        ``polish_keep`` share), the rest constant nudges of tournament winners."""
-        assert self._population is not None and self._fitness is not None
-        old, v, size = self._population, self.variation, self.population_size
-        merit = self._pareto()
-        ranking = self._fitness if merit is None else merit
-        best_first = np.argsort(-ranking, kind="stable")
-        kept: dict[Program, int] = {}
-        for i in self._picks.tolist():
-            kept.setdefault(old[i], i)
-        for i in best_first.tolist():
-            if len(kept) >= max(1, round(v.polish_keep * size)):
-                break
-            if np.isfinite(self._fitness[i]):
-                kept.setdefault(old[i], i)
-        children, parents = list(kept), [(i, -1) for i in kept.values()]
-        for i in self._select(size - len(children)).tolist():
-            scale = v.tweak_scale * 10.0 ** -self.rng.random()
-            children.append(tweak_constants(old[i], self.pset, self.rng, scale=scale))
             parents.append((i, -1))
         return self._diverse(children), np.array(parents, dtype=np.int64)
 
