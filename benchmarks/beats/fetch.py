@@ -33,6 +33,7 @@ SETS = (
     "confirm8",
     "confirm9",
     "confirm10",
+    "confirm11",
 )
 """The corpus's sets, in the order they were fixed (docs/beats.md)."""
 REFERENCE_TRACKERS = ("madmom", "essentia", "librosa")

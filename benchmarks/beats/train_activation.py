@@ -4,7 +4,7 @@
     .venv/bin/python benchmarks/beats/train_activation.py cv [--folds 0 1] [--json ROWS]
     .venv/bin/python benchmarks/beats/train_activation.py summary ROWS...  # CV rows together
     .venv/bin/python benchmarks/beats/train_activation.py train -o src/sinews/music/beatnet.npz
-    .venv/bin/python benchmarks/beats/train_activation.py score --set confirm10 [--net FILE]
+    .venv/bin/python benchmarks/beats/train_activation.py score --set confirm11 [--net FILE]
 
 Needs the excerpts (fetch.py) and PyTorch (dev only: `pip install torch==2.13.0`); the
 shipped network runs in numpy. `features` stores, per song, the network's inputs at 60 fps
@@ -37,7 +37,7 @@ from metrics import score  # noqa: E402
 from sinews.music.beatnet import NET_FPS as FPS  # noqa: E402
 
 SEEN = SETS[:-1]
-"""Every set but the newest (confirm10), which is kept unseen for one final score."""
+"""Every set but the newest (confirm11), which is kept unseen for one final score."""
 FOLDS = (
     ("tune", "confirm3"),
     ("heldout", "confirm", "confirm2", "confirm5", "confirm6"),
@@ -257,7 +257,7 @@ def main() -> None:
     parser.add_argument("--json", type=Path, default=None)
     parser.add_argument("--cache", type=Path, default=default_cache())
     parser.add_argument("-o", "--output", type=Path, default=None)
-    parser.add_argument("--set", default="confirm10", choices=SETS)
+    parser.add_argument("--set", default="confirm11", choices=SETS)
     parser.add_argument("--net", type=Path, default=None)
     parser.add_argument("--seed", type=int, default=Settings.seed, help="cv: the training seed")
     parser.add_argument("--seeds", nargs="*", type=int, default=[0, 1], help="train: one net each")
