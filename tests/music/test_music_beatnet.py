@@ -30,7 +30,7 @@ def _inputs(audio: Audio, fps: float, n_bands: int) -> tuple[np.ndarray, np.ndar
 
 def test_the_shipped_networks_are_whole() -> None:
     nets = load_nets()
-    assert len(nets) == 2
+    assert len(nets) == 4
     for net in nets:
         channels = net.in_w.shape[1]
         assert net.in_w.shape == (2 * NET_BANDS, channels)
@@ -41,7 +41,7 @@ def test_the_shipped_networks_are_whole() -> None:
         assert net.dilations.tolist() == [2**k for k in range(layers)]
         for field in dataclasses.fields(net):
             assert np.all(np.isfinite(getattr(net, field.name)))
-    assert not np.array_equal(nets[0].in_w, nets[1].in_w)
+    assert len({net.in_w.tobytes() for net in nets}) == len(nets)  # four training seeds
 
 
 def test_the_activation_is_the_members_mean(groove_audio: Audio, tmp_path: Path) -> None:
@@ -49,7 +49,7 @@ def test_the_activation_is_the_members_mean(groove_audio: Audio, tmp_path: Path)
     inputs = _inputs(groove_audio, NET_FPS, NET_BANDS)
     each = [beat_activation(*inputs, NET_FPS, [net]) for net in nets]
     np.testing.assert_allclose(beat_activation(*inputs, NET_FPS), np.mean(each, axis=0))
-    save_nets(nets[1:], tmp_path / "one.npz")
+    save_nets(nets[1:2], tmp_path / "one.npz")
     (again,) = load_nets(tmp_path / "one.npz")
     np.testing.assert_array_equal(beat_activation(*inputs, NET_FPS, [again]), each[1])
 

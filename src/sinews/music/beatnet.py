@@ -9,7 +9,7 @@ tracks tempo and beats on `beat_strength`: this activation plus the onset envelo
 its standard deviation (the envelope keeps the beat level's onsets in the tempo's evidence;
 the sum scored higher than either alone, docs/beats.md).
 
-Two such networks (training seeds 0 and 1) were trained by ``benchmarks/beats/train_activation.py``
+Four such networks (training seeds 0-3) were trained by ``benchmarks/beats/train_activation.py``
 on the beat corpus's reference beats (docs/beats.md); the activation is the mean of their
 probabilities. Their weights ship beside this module (`WEIGHTS`). Inference is plain numpy.
 """

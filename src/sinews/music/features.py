@@ -16,7 +16,7 @@ from sinews.music.errors import AudioError
 
 __all__ = ["ANALYSIS_VERSION", "MusicFeatures"]
 
-ANALYSIS_VERSION = 7
+ANALYSIS_VERSION = 8
 """Bump whenever the analysis changes its output; cached results of older versions are ignored."""
 
 _ARRAYS = (
