@@ -232,6 +232,25 @@ def test_a_group_of_runs_and_a_run_that_stops_when_adequate(tmp_path: Path) -> N
     assert all(i.status == "finished" and i.generations == 1 for i in infos)
 
 
+def test_runs_that_restart_say_where_in_every_report(tmp_path: Path) -> None:
+    """With --restart-after 1 these small runs stall and restart; the tables and plot say so."""
+    db = str(tmp_path / "r.db")
+    args = ["evolve", "luxo", "--controller", "gp", "--task", "hop", "--population", "8",
+            "--generations", "6", "--seconds", "0.5", "--seed", "1", "--runs", "2",
+            "--restart-after", "1", "--db", db]  # fmt: skip
+    done = subprocess.run([*sinews_command(), *args], capture_output=True, text=True,
+                          env={**os.environ, "COLUMNS": "200"})  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    with RunStore(db) as store:
+        restarts = {run: store.restarts(run) for run in (1, 2)}
+        plot = fitness_plot(store, 1)
+    assert all(restarts.values()) and all(0 not in found for found in restarts.values())
+    assert "restarted at" in done.stdout  # the group's column
+    said = f"restarted (bred afresh, at random) at generation {', '.join(map(str, restarts[2]))}"
+    assert said in done.stdout
+    assert {f"restart at {g}" for g in restarts[1]} <= set(plot.marks)
+
+
 def test_ctrl_c_in_a_group_leaves_no_run_marked_running(tmp_path: Path) -> None:
     """The runs of a group that never began are stopped with the one interrupted, said so,
     and each resumes."""
@@ -263,6 +282,8 @@ def test_ctrl_c_in_a_group_leaves_no_run_marked_running(tmp_path: Path) -> None:
         (["--runs", "0"], "--runs"),
         (["--target", "5"], "0.5 to 2 m"),
         (["--until", "-1"], "until must be between"),
+        (["--restart-after", "0"], "restart_after must be a whole number from 1 to"),
+        (["--config", "half.toml"], "restart_after must be a whole number from 1 to"),
         (["--config", "bad.toml"], "unknown setting 'bogus'"),
         (["--config", "toes.toml"], "'toes' is not one of this run's style terms"),
         (["--config", "goal.toml"], "'distance' is not one of this run's style terms"),
@@ -278,6 +299,7 @@ def test_bad_group_and_termination_settings(tmp_path: Path, extra: list[str], me
     (tmp_path / "text.toml").write_text('constraints = "head"\n')
     (tmp_path / "late.toml").write_text('constraints = ["head"]\nconstraints_from = "5"\n')
     (tmp_path / "loose.toml").write_text("constraints_from = 5\n")
+    (tmp_path / "half.toml").write_text("restart_after = 2.5\n")
     args = ["evolve", "luxo", "--controller", "gp", "--task", "hop", *extra, "--db", "r.db"]
     done = subprocess.run([*sinews_command(), *args], capture_output=True, text=True, cwd=tmp_path)
     assert done.returncode == 2 and done.stderr.count("\n") == 1 and message in done.stderr

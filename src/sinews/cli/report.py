@@ -33,8 +33,8 @@ def print_table(table: Table) -> Console:
 
 
 def print_group(store: RunStore, group: list[int]) -> None:
-    """One row per run of a group (seed, generations used, its best and the best's terms),
-    then the group's best."""
+    """One row per run of a group (seed, generations used, any restarts, its best and the
+    best's terms), then the group's best."""
     bests = [best_of(store, run_id) for run_id in group]
     infos = [store.run(run_id) for run_id in group]
     spec = EvolutionConfig.from_dict(infos[0].config).fitness
@@ -42,12 +42,15 @@ def print_group(store: RunStore, group: list[int]) -> None:
     names = [n for n in spec.names if spec.weights.get(n, 1.0) != 0]
     table = Table(title=f"{len(group)} runs of one setting: each run's best",
                   box=box.SIMPLE_HEAD, show_edge=False)  # fmt: skip
-    for column in ("run", "seed", "generations", "best", *names):
+    restarts = [store.restarts(run_id) for run_id in group]
+    restart_column = ("restarted at",) if any(restarts) else ()
+    for column in ("run", "seed", "generations", *restart_column, "best", *names):
         table.add_column(column, justify="right")
-    for info, best, value in zip(infos, bests, rated, strict=True):
+    for info, best, value, started in zip(infos, bests, rated, restarts, strict=True):
         terms = best.terms or {}
         used = f"{info.generations}/{info.config['generations']}"
-        table.add_row(str(info.id), str(info.seed), used, _number(float(value)),
+        restarted = (", ".join(map(str, started)) or "-",) if restart_column else ()
+        table.add_row(str(info.id), str(info.seed), used, *restarted, _number(float(value)),
                       *[_number(terms.get(n)) for n in names])  # fmt: skip
     console = print_table(table)
     k = int(np.argmax(rated))
@@ -157,6 +160,10 @@ def print_summary(store: RunStore, run_id: int) -> None:
     console = print_table(table)
     if not len(stats.generations):
         return
+    restarts = store.restarts(run_id)
+    if restarts:
+        console.print(f"restarted (bred afresh, at random) at generation "
+                      f"{', '.join(map(str, restarts))}", highlight=False)  # fmt: skip
     best = best_of(store, run_id)
     info = store.run(run_id)
     text = kind_of(info).genome_text(best)

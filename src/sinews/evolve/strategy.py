@@ -81,6 +81,7 @@ class AskTell(ABC, Generic[Population]):
         self.population_size = int(population_size)
         self.rng = rng
         self._generation = -1
+        self._started = 0
         self._population: Population | None = None
         self._parents: IntArray | None = None
         self._told = False
@@ -93,6 +94,11 @@ class AskTell(ABC, Generic[Population]):
     def generation(self) -> int:
         """Number of the last population asked for (-1 before the first ``ask``)."""
         return self._generation
+
+    @property
+    def started(self) -> int:
+        """The generation of the last population made at random: 0, or the last restart."""
+        return self._started
 
     def _asked(self) -> Population:
         """The last population asked for; `StrategyError` before the first ``ask``."""
@@ -118,17 +124,22 @@ class AskTell(ABC, Generic[Population]):
         """True between an ``ask`` and its ``tell``."""
         return self._population is not None and not self._told
 
-    def ask(self) -> Population:
+    def ask(self, *, fresh: bool = False) -> Population:
         """The next population (a copy the caller may keep).
+
+        Args:
+            fresh: make it at random, as the first one, instead of breeding it (a restart:
+                `started` becomes its generation).
 
         Raises:
             StrategyError: the previous population has not been told yet.
         """
         if self.awaiting_tell:
             raise RuntimeError("ask() called twice: tell() the last population first")
-        if self._population is None:
+        if self._population is None or fresh:
             population = self._first()
             parents = np.full((self.population_size, 2), -1, dtype=np.int64)
+            self._started = self._generation + 1
         else:
             population, parents = self._breed()
         self._population, self._parents = population, parents
@@ -210,7 +221,8 @@ class AskTell(ABC, Generic[Population]):
         """The whole state as a JSON-safe dict (see `from_state`).
 
         Besides the settings: the generation, the last population and its
-        parents, and, once told, the fitness and (if it `takes` them) the picks.
+        parents, and, once told, the fitness and (if it `takes` them) the picks; after a
+        restart, the generation it `started`.
         """
         population = self._population
         state: dict[str, Any] = {
@@ -220,6 +232,8 @@ class AskTell(ABC, Generic[Population]):
             "population": None if population is None else self._encode_population(population),
             "parents": None if self._parents is None else encode_array(self._parents),
         }
+        if self._started:  # only after a restart: older checkpoints stay byte for byte
+            state["started"] = self._started
         if self._told:
             state["fitness"] = None if self._fitness is None else encode_array(self._fitness)
             if "picks" in self.takes:
@@ -233,6 +247,9 @@ class AskTell(ABC, Generic[Population]):
     def _restore_cycle(self, state: Mapping[str, Any]) -> None:
         """Put a fresh strategy where `to_state` left the cycle (KeyError etc. if malformed)."""
         self._generation = int(state["generation"])
+        self._started = int(state.get("started", 0))
+        if not 0 <= self._started <= max(self._generation, 0):
+            raise StrategyError("checkpoint: started is not one of its generations")
         if state["population"] is not None:
             population = self._decode_population(state["population"])
             parents = decode_array(state["parents"], "parents")

@@ -55,6 +55,7 @@ __all__ = [
     "record_picks",
     "retune_fitness",
     "run_strategy",
+    "stalled",
 ]
 
 
@@ -204,6 +205,7 @@ def advance(
     spec: FitnessSpec | None,
     strategy: AskTell[Any],
     picks: list[int] | None = None,
+    fresh: bool = False,
 ) -> GenerationSummary:
     """Make, score and store the next generation of a run.
 
@@ -216,6 +218,7 @@ def advance(
             restored from the last generation's checkpoint.
         picks: a person's picks in the last generation (interactive and
             hybrid runs); stored in the same transaction.
+        fresh: make the generation at random instead of breeding it (a restart).
 
     Returns:
         The summary of the stored generation.
@@ -226,7 +229,7 @@ def advance(
     if last >= 0:
         soft = _soft(store, run_id, last, spec) if "soft" in strategy.takes else None
         _tell(strategy, store.generation_fitness(run_id, last), list(picks or []), soft)
-    genomes = strategy.genomes(strategy.ask())
+    genomes = strategy.genomes(strategy.ask(fresh=fresh))
     checkpoint = strategy.to_bytes()
     generation = last + 1
     seeds = individual_seeds(info.seed, generation, len(genomes))
@@ -285,6 +288,7 @@ def continue_run(
     picks: Callable[[int], Sequence[int]] | None = None,
     on_generation: Callable[[GenerationSummary], None] | None = None,
     stop: Callable[[], bool] | None = None,
+    restart_after: int | None = None,
 ) -> None:
     """Run generations until the run has ``config["generations"]``, then mark it finished.
 
@@ -308,6 +312,9 @@ def continue_run(
         stop: asked after each stored generation (and before the first new one
             of a resumed run); True ends the run there, finished (a termination
             criterion such as "a program is adequate").
+        restart_after: a run whose best at full weight has not improved for this many
+            generations since it last started (`stalled`) makes its next generation at
+            random (None: never); the run's best stays the best of all its generations.
 
     Raises:
         SinewsError: ``generations`` is fewer than the run already has.
@@ -329,9 +336,12 @@ def continue_run(
                 if last >= 0 and stop is not None and stop():
                     break
                 kept = list(picks(last)) if picks is not None and last >= 0 else None
-                summary = advance(
-                    store, run_id, scorer=scorer, spec=spec, strategy=strategy, picks=kept
-                )
+                fresh = (
+                    restart_after is not None and spec is not None and last >= 0
+                    and stalled(store, run_id, spec, since=strategy.started, after=restart_after)
+                )  # fmt: skip
+                summary = advance(store, run_id, scorer=scorer, spec=spec, strategy=strategy,
+                                  picks=kept, fresh=fresh)  # fmt: skip
                 if on_generation is not None:
                     on_generation(summary)
         except BaseException:
@@ -428,6 +438,22 @@ def full_weight_bests(table: ScoreTable, spec: FitnessSpec) -> npt.NDArray[np.fl
     full = full_weight_fitness(table.terms, table.failed, spec)
     generations = np.unique(table.generation)
     return np.array([full[table.generation == g].max() for g in generations], dtype=np.float64)
+
+
+def stalled(store: RunStore, run_id: int, spec: FitnessSpec, *, since: int, after: int) -> bool:
+    """Whether no generation of the last ``after`` beat, at full weight, the best of the
+    run's generations from ``since`` (its last start) up to them.
+
+    Rated at full weight, a generation's best does not fall as style phases in, so a run
+    still gaining is never called stalled; one that gains nothing for ``after`` is.
+    """
+    table = store.scores(run_id)
+    full = full_weight_fitness(table.terms, table.failed, spec)
+    generations = np.unique(table.generation[table.generation >= since])
+    bests = np.array([full[table.generation == g].max() for g in generations])
+    if len(bests) <= after:
+        return False
+    return bool(bests[-after:].max() <= bests[:-after].max())
 
 
 def best_at_full_weight(store: RunStore, run_id: int, spec: FitnessSpec) -> Individual:

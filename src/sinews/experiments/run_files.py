@@ -48,7 +48,8 @@ class FitnessPlot:
         series: name → (G,) values: best, mean, each best's weighed terms, the best at full
             style weight.
         title: the plot's title.
-        marks: label → generation where style starts and where it is full.
+        marks: label → generation where style starts and where it is full, and where the
+            run restarted.
     """
 
     generations: npt.NDArray[np.int64]
@@ -85,6 +86,7 @@ def fitness_plot(store: RunStore, run_id: int) -> FitnessPlot:
         marks = {start: spec.phase_in.start, "style full": spec.phase_in.full}
         if spec.constraints and not together and spec.constraints_start <= stats.generations[-1]:
             marks["constraints start"] = spec.constraints_start
+    marks.update({f"restart at {g}": g for g in store.restarts(run_id)})
     song = info.config.get("song", "")
     title = f"run {run_id}: {info.kind}{f' to {song}' if song else ''}"
     title += " (terms of each best)" if terms else ""

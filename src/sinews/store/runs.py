@@ -253,6 +253,16 @@ class RunStore:
         rows = self._query("SELECT max(generation) FROM generations WHERE run_id = ?", (run_id,))
         return -1 if rows[0][0] is None else int(rows[0][0])
 
+    def restarts(self, run_id: int) -> list[int]:
+        """The generations after 0 made at random, with no parents (a run's restarts)."""
+        rows = self._query(
+            "SELECT i.generation FROM individuals i LEFT JOIN parents p ON p.child = i.id "
+            "WHERE i.run_id = ? AND i.generation > 0 GROUP BY i.generation "
+            "HAVING count(p.parent) = 0 ORDER BY i.generation",
+            (run_id,),
+        )
+        return [int(r[0]) for r in rows]
+
     def checkpoint(self, run_id: int, generation: int) -> bytes:
         """The strategy checkpoint stored with a generation."""
         rows = self._query(

@@ -44,7 +44,7 @@ from sinews.experiments.kinds import (
 from sinews.experiments.motion_log import MotionLog, recall
 from sinews.experiments.run_config import ConfigError, EvolutionConfig, build_config
 from sinews.figures.tasks import Task, make_task
-from sinews.limits import check_number
+from sinews.limits import MAX_GENERATIONS, check_number, check_whole
 from sinews.render.figure_scene import scene_of
 from sinews.store import Individual, RunInfo, RunStore
 
@@ -97,12 +97,13 @@ DEFAULTS: dict[str, Any] = {
     "functions": list(GPSettings.functions),
     "erc_range": list(GPSettings.erc_range),
     "until": None,
+    "restart_after": None,
     "song": None,
 }
 """The paper's run (250 programs, 50 generations) unless told otherwise; the task's
 terms make the fitness, and style is phased in from a tenth of the run to its end."""
 _KIND_KEYS = ("task", "target", "pole_height", "lamp", "seconds", "control_hz", "physics_hz",
-              "functions", "erc_range", "until", "song")  # fmt: skip
+              "functions", "erc_range", "until", "restart_after", "song")  # fmt: skip
 DANCE_FUNCTIONS = (*BASIC_FUNCTIONS, "sin", "cos")
 """A dance's default function set: the paper's, with ``sin`` and ``cos`` for the beat."""
 CLEAN_TERMS = ("head", "fallen", "touch")
@@ -141,6 +142,8 @@ class GPKind:
         KindOption("until", float, "GP: stop at the first generation with a program this "
                    "close to the goal (m) and clean (no head contact, never down, the bar "
                    "untouched)."),
+        KindOption("restart_after", int, "GP: breed the next generation afresh, at random, "
+                   "when the best at full weight has not improved for this many generations."),
     )  # fmt: skip
     defaults = DEFAULTS
     summary = "GP programs for a task"
@@ -187,6 +190,11 @@ class GPKind:
         until = extra.pop("until", None)
         if until is not None:
             until = check_number("until", until, 1e-4, 1.0)
+        restart_after = extra.pop("restart_after", None)
+        restarts = {}  # only when asked for: older runs' configs stay as they were
+        if restart_after is not None:
+            restarts["restart_after"] = check_whole("restart_after", restart_after, 1,
+                                                    MAX_GENERATIONS)  # fmt: skip
         song_setting = extra.pop("song", None)
         named = {"song": song_setting} if song_setting else {}  # what `runs list` shows
         heard = {} if song is None else {"song_path": str(song[0]), "song_hash": song[1].song_hash}
@@ -198,7 +206,7 @@ class GPKind:
         Strategies(settings.genomes).new(config.to_dict(), config.seed)  # bad options fail here
         return store.create_run(
             f"{CONTROLLER}-{task.figure.name}",
-            config={**config.to_dict(), **settings.to_dict(), "until": until, **named},
+            config={**config.to_dict(), **settings.to_dict(), "until": until, **restarts, **named},
             seed=config.seed,
             genome_codec=GENOME_CODEC,
             song_hash=settings.song_hash,
@@ -219,7 +227,8 @@ class GPKind:
 
         A run made with ``until`` (metres) stops at the first generation that
         holds an adequate program: within ``until`` of the goal and clean (no
-        head contact, never down, the bar untouched).
+        head contact, never down, the bar untouched). One made with ``restart_after``
+        starts afresh when it stalls that long (see `continue_run`).
         """
         info = store.run(run_id)
         settings = _settings(info)
@@ -230,6 +239,7 @@ class GPKind:
             strategies=Strategies(settings.genomes), generations=generations,
             on_generation=on_generation,
             stop=None if until is None else lambda: adequate(store, run_id, float(until)),
+            restart_after=info.config.get("restart_after"),
         )  # fmt: skip
 
     def pick(
