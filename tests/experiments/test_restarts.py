@@ -11,7 +11,7 @@ import pytest
 
 from sinews.evolve import FitnessSpec, GenomeSpace, restore_strategy
 from sinews.evolve.errors import StrategyError
-from sinews.experiments.evolution import Scores, Strategies, continue_run, stalled
+from sinews.experiments.evolution import Restart, Scores, Strategies, continue_run, stalled
 from sinews.store import RunStore
 
 Rule = Callable[[npt.NDArray[np.float64], int], npt.NDArray[np.float64]]
@@ -33,7 +33,7 @@ class RuleScorer:
         return Scores(terms=values[:, None], failed=np.zeros(len(values), dtype=bool))
 
 
-def run(db: Path, rule: Rule, *, generations: int, restart_after: int | None,
+def run(db: Path, rule: Rule, *, generations: int, restart: Restart | None,
         until: int | None = None) -> RunStore:  # fmt: skip
     """A 6-genome GA run of ``generations`` scored by ``rule`` (it stops before ``until``)."""
     store = RunStore(db)
@@ -42,7 +42,7 @@ def run(db: Path, rule: Rule, *, generations: int, restart_after: int | None,
     if store.last_generation(1) < 0 and not store.runs():
         store.create_run("test", config=config, seed=4, genome_codec="float64")
     continue_run(store, 1, scorer=RuleScorer(rule), spec=SPEC, strategies=STRATEGIES,
-                 generations=until, restart_after=restart_after)  # fmt: skip
+                 generations=until, restart=restart)  # fmt: skip
     return store
 
 
@@ -55,7 +55,7 @@ def rising(genomes: npt.NDArray[np.float64], generation: int) -> npt.NDArray[np.
 
 
 def test_a_run_that_gains_nothing_restarts_every_restart_after_plus_one(tmp_path: Path) -> None:
-    with run(tmp_path / "r.db", flat, generations=12, restart_after=3) as store:
+    with run(tmp_path / "r.db", flat, generations=12, restart=Restart(3)) as store:
         assert store.restarts(1) == [4, 8]
         for generation in range(12):
             strategy = restore_strategy(store.checkpoint(1, generation))
@@ -65,13 +65,23 @@ def test_a_run_that_gains_nothing_restarts_every_restart_after_plus_one(tmp_path
 
 
 def test_a_run_still_gaining_never_restarts(tmp_path: Path) -> None:
-    with run(tmp_path / "r.db", rising, generations=10, restart_after=1) as store:
+    with run(tmp_path / "r.db", rising, generations=10, restart=Restart(1)) as store:
         assert store.restarts(1) == []
         assert b"started" not in store.checkpoint(1, 9)  # checkpoints as before restarts
 
 
+def test_a_run_creeping_up_by_less_than_the_gain_is_stalled(tmp_path: Path) -> None:
+    def creeping(genomes: npt.NDArray[np.float64], generation: int) -> npt.NDArray[np.float64]:
+        return np.full(len(genomes), 1e-4 * generation)
+
+    with run(tmp_path / "gain.db", creeping, generations=9, restart=Restart(3, 1e-3)) as store:
+        assert store.restarts(1) == [4, 8]
+    with run(tmp_path / "none.db", creeping, generations=9, restart=Restart(3)) as store:
+        assert store.restarts(1) == []
+
+
 def test_without_restart_after_a_stalled_run_goes_on_breeding(tmp_path: Path) -> None:
-    with run(tmp_path / "r.db", flat, generations=8, restart_after=None) as store:
+    with run(tmp_path / "r.db", flat, generations=8, restart=None) as store:
         assert store.restarts(1) == []
 
 
@@ -84,13 +94,13 @@ def test_a_run_stopped_and_resumed_restarts_as_one_that_never_stopped(tmp_path: 
     def noisy(genomes: npt.NDArray[np.float64], generation: int) -> npt.NDArray[np.float64]:
         return np.minimum(genomes.sum(axis=1), 1.5)  # soon stuck at its ceiling
 
-    with run(tmp_path / "whole.db", noisy, generations=11, restart_after=2) as whole:
+    with run(tmp_path / "whole.db", noisy, generations=11, restart=Restart(2)) as whole:
         expected = contents(whole)
         assert whole.restarts(1)
     for stop in (3, 5, 8):  # stop after that many generations, then go on (extending)
         db = tmp_path / f"part{stop}.db"
-        run(db, noisy, generations=stop, restart_after=2).close()
-        with run(db, noisy, generations=stop, restart_after=2, until=11) as resumed:
+        run(db, noisy, generations=stop, restart=Restart(2)).close()
+        with run(db, noisy, generations=stop, restart=Restart(2), until=11) as resumed:
             assert contents(resumed) == expected
 
 
@@ -102,18 +112,18 @@ def test_stalled_compares_the_last_generations_with_the_rest_since_the_start(
     def scripted(genomes: npt.NDArray[np.float64], generation: int) -> npt.NDArray[np.float64]:
         return np.full(len(genomes), next(bests))
 
-    with run(tmp_path / "r.db", scripted, generations=6, restart_after=None) as store:
-        assert not stalled(store, 1, SPEC, since=0, after=5)  # 2 > 1: gained in the last 5
-        assert stalled(store, 1, SPEC, since=0, after=4)  # a tie is no gain
-        assert stalled(store, 1, SPEC, since=0, after=1)  # 0.7 <= 2
-        assert not stalled(store, 1, SPEC, since=0, after=6)  # too few generations to say
-        assert not stalled(store, 1, SPEC, since=4, after=1)  # 0.7 > 0.5 since generation 4
-        assert stalled(store, 1, SPEC, since=3, after=2)  # 0.5, 0.7 <= 2
+    with run(tmp_path / "r.db", scripted, generations=6, restart=None) as store:
+        assert not stalled(store, 1, SPEC, since=0, rule=Restart(5))  # 2 > 1: a gain
+        assert stalled(store, 1, SPEC, since=0, rule=Restart(4))  # a tie is no gain
+        assert stalled(store, 1, SPEC, since=0, rule=Restart(1))  # 0.7 <= 2
+        assert not stalled(store, 1, SPEC, since=0, rule=Restart(6))  # too few to say
+        assert not stalled(store, 1, SPEC, since=4, rule=Restart(1))  # 0.7 > 0.5 since 4
+        assert stalled(store, 1, SPEC, since=3, rule=Restart(2))  # 0.5, 0.7 <= 2
 
 
 @pytest.mark.parametrize("started", [-1, 7, "x"])
 def test_a_checkpoint_with_a_bad_start_is_refused(tmp_path: Path, started: object) -> None:
-    with run(tmp_path / "r.db", flat, generations=5, restart_after=2) as store:
+    with run(tmp_path / "r.db", flat, generations=5, restart=Restart(2)) as store:
         strategy = restore_strategy(store.checkpoint(1, 4))
     state = strategy.to_state()
     assert state["started"] == 3

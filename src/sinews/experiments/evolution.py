@@ -44,6 +44,7 @@ from sinews.store.lease import run_lease
 
 __all__ = [
     "GenerationSummary",
+    "Restart",
     "Scorer",
     "Scores",
     "Strategies",
@@ -87,6 +88,20 @@ class Scorer(Protocol):
     def __call__(self, genomes: Any, seeds: npt.NDArray[np.int64]) -> Scores:
         """Score P genomes (as the store holds them, see `AskTell[Any].genomes`) with (P,) seeds."""
         ...
+
+
+@dataclass(frozen=True)
+class Restart:
+    """When a run starts afresh: it has `stalled` for ``after`` generations.
+
+    Attributes:
+        after: generations without a gain that make a stall.
+        gain: the least rise of the best at full weight, in fitness units, that counts as
+            a gain over those generations (a run creeping up by hair-widths is stalled).
+    """
+
+    after: int
+    gain: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -288,7 +303,7 @@ def continue_run(
     picks: Callable[[int], Sequence[int]] | None = None,
     on_generation: Callable[[GenerationSummary], None] | None = None,
     stop: Callable[[], bool] | None = None,
-    restart_after: int | None = None,
+    restart: Restart | None = None,
 ) -> None:
     """Run generations until the run has ``config["generations"]``, then mark it finished.
 
@@ -312,9 +327,9 @@ def continue_run(
         stop: asked after each stored generation (and before the first new one
             of a resumed run); True ends the run there, finished (a termination
             criterion such as "a program is adequate").
-        restart_after: a run whose best at full weight has not improved for this many
-            generations since it last started (`stalled`) makes its next generation at
-            random (None: never); the run's best stays the best of all its generations.
+        restart: a run that has `stalled` by this rule since it last started makes its
+            next generation at random (None: never); the run's best stays the best of all
+            its generations.
 
     Raises:
         SinewsError: ``generations`` is fewer than the run already has.
@@ -337,8 +352,8 @@ def continue_run(
                     break
                 kept = list(picks(last)) if picks is not None and last >= 0 else None
                 fresh = (
-                    restart_after is not None and spec is not None and last >= 0
-                    and stalled(store, run_id, spec, since=strategy.started, after=restart_after)
+                    restart is not None and spec is not None and last >= 0
+                    and stalled(store, run_id, spec, since=strategy.started, rule=restart)
                 )  # fmt: skip
                 summary = advance(store, run_id, scorer=scorer, spec=spec, strategy=strategy,
                                   picks=kept, fresh=fresh)  # fmt: skip
@@ -440,20 +455,22 @@ def full_weight_bests(table: ScoreTable, spec: FitnessSpec) -> npt.NDArray[np.fl
     return np.array([full[table.generation == g].max() for g in generations], dtype=np.float64)
 
 
-def stalled(store: RunStore, run_id: int, spec: FitnessSpec, *, since: int, after: int) -> bool:
-    """Whether no generation of the last ``after`` beat, at full weight, the best of the
-    run's generations from ``since`` (its last start) up to them.
+def stalled(store: RunStore, run_id: int, spec: FitnessSpec, *, since: int, rule: Restart) -> bool:
+    """Whether no generation of the last ``rule.after`` beat, at full weight and by more
+    than ``rule.gain``, the best of the run's generations from ``since`` (its last start)
+    up to them.
 
     Rated at full weight, a generation's best does not fall as style phases in, so a run
     still gaining is never called stalled; one that gains nothing for ``after`` is.
     """
+    after = rule.after
     table = store.scores(run_id)
     full = full_weight_fitness(table.terms, table.failed, spec)
     generations = np.unique(table.generation[table.generation >= since])
     bests = np.array([full[table.generation == g].max() for g in generations])
     if len(bests) <= after:
         return False
-    return bool(bests[-after:].max() <= bests[:-after].max())
+    return bool(bests[-after:].max() <= bests[:-after].max() + rule.gain)
 
 
 def best_at_full_weight(store: RunStore, run_id: int, spec: FitnessSpec) -> Individual:

@@ -26,6 +26,7 @@ from sinews.errors import SinewsError
 from sinews.evolve import Evaluator, SerialEvaluator
 from sinews.experiments.evolution import (
     GenerationSummary,
+    Restart,
     Strategies,
     continue_run,
     record_picks,
@@ -53,6 +54,7 @@ __all__ = [
     "CONTROLLER",
     "DEFAULTS",
     "KIND",
+    "RESTART_GAIN",
     "TARGET_AXES",
     "TASKS",
     "GPKind",
@@ -106,6 +108,9 @@ _KIND_KEYS = ("task", "target", "pole_height", "lamp", "seconds", "control_hz", 
               "functions", "erc_range", "until", "restart_after", "song")  # fmt: skip
 DANCE_FUNCTIONS = (*BASIC_FUNCTIONS, "sin", "cos")
 """A dance's default function set: the paper's, with ``sin`` and ``cos`` for the beat."""
+RESTART_GAIN = 0.001
+"""The least rise of a GP run's best at full weight (fitness is in metres: 1 mm) over
+``restart_after`` generations that is not a stall."""
 CLEAN_TERMS = ("head", "fallen", "touch")
 """Style terms an adequate program must not lose anything on."""
 
@@ -143,7 +148,8 @@ class GPKind:
                    "close to the goal (m) and clean (no head contact, never down, the bar "
                    "untouched)."),
         KindOption("restart_after", int, "GP: breed the next generation afresh, at random, "
-                   "when the best at full weight has not improved for this many generations."),
+                   "when the best at full weight has gained under 1 mm in this many "
+                   "generations."),
     )  # fmt: skip
     defaults = DEFAULTS
     summary = "GP programs for a task"
@@ -232,14 +238,14 @@ class GPKind:
         """
         info = store.run(run_id)
         settings = _settings(info)
-        until = info.config.get("until")
+        until, after = info.config.get("until"), info.config.get("restart_after")
         continue_run(
             store, run_id, scorer=GPScorer(settings, evaluator, log),
             spec=EvolutionConfig.from_dict(info.config).fitness,
             strategies=Strategies(settings.genomes), generations=generations,
             on_generation=on_generation,
             stop=None if until is None else lambda: adequate(store, run_id, float(until)),
-            restart_after=info.config.get("restart_after"),
+            restart=None if after is None else Restart(int(after), RESTART_GAIN),
         )  # fmt: skip
 
     def pick(
