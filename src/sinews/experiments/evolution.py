@@ -463,14 +463,11 @@ def stalled(store: RunStore, run_id: int, spec: FitnessSpec, *, since: int, rule
     Rated at full weight, a generation's best does not fall as style phases in, so a run
     still gaining is never called stalled; one that gains nothing for ``after`` is.
     """
-    after = rule.after
     table = store.scores(run_id)
-    full = full_weight_fitness(table.terms, table.failed, spec)
-    generations = np.unique(table.generation[table.generation >= since])
-    bests = np.array([full[table.generation == g].max() for g in generations])
-    if len(bests) <= after:
+    bests = full_weight_bests(table, spec)[np.unique(table.generation) >= since]
+    if len(bests) <= rule.after:
         return False
-    return bool(bests[-after:].max() <= bests[:-after].max() + rule.gain)
+    return bool(bests[-rule.after :].max() <= bests[: -rule.after].max() + rule.gain)
 
 
 def best_at_full_weight(store: RunStore, run_id: int, spec: FitnessSpec) -> Individual:
