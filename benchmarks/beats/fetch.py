@@ -34,6 +34,7 @@ SETS = (
     "confirm9",
     "confirm10",
     "confirm11",
+    "confirm12",
 )
 """The corpus's sets, in the order they were fixed (docs/beats.md)."""
 REFERENCE_TRACKERS = ("madmom", "essentia", "librosa")

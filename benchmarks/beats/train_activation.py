@@ -4,7 +4,7 @@
     .venv/bin/python benchmarks/beats/train_activation.py cv [--folds 0 1] [--json ROWS]
     .venv/bin/python benchmarks/beats/train_activation.py summary ROWS...  # CV rows together
     .venv/bin/python benchmarks/beats/train_activation.py train -o src/sinews/music/beatnet.npz
-    .venv/bin/python benchmarks/beats/train_activation.py score --set confirm11 [--net FILE]
+    .venv/bin/python benchmarks/beats/train_activation.py score --set confirm12 [--net FILE]
 
 Needs the excerpts (fetch.py) and PyTorch (dev only: `pip install torch==2.13.0`); the
 shipped network runs in numpy. `features` stores, per song, the network's inputs at 60 fps
