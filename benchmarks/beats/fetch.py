@@ -35,6 +35,7 @@ SETS = (
     "confirm10",
     "confirm11",
     "confirm12",
+    "confirm13",
 )
 """The corpus's sets, in the order they were fixed (docs/beats.md)."""
 REFERENCE_TRACKERS = ("madmom", "essentia", "librosa")

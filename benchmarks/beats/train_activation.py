@@ -43,6 +43,7 @@ FOLDS = (
     ("heldout", "confirm", "confirm2", "confirm5", "confirm6"),
     ("confirm4", "confirm7", "confirm8"),
     ("confirm9",),
+    ("confirm10", "confirm11", "confirm12"),
 )
 
 
@@ -57,6 +58,9 @@ class Settings:
     batch: int = 8
     crop_s: float = 30.0
     gain_db: float = 6.0
+    stretch: float = 1.0
+    """Crops are time-stretched by a factor drawn log-uniformly in [1/stretch, stretch]
+    (1: none, the shipped networks' recipe)."""
     seed: int = 0
 
 
@@ -115,7 +119,7 @@ def fit(cache: Path, train_ids: list[str], settings: Settings):  # type: ignore[
     """Train a network on ``train_ids``; returns its `sinews.music.beatnet.BeatNet`."""
     import torch
 
-    from sinews.music.beatnet import net_input
+    from sinews.music.beatnet import _resample, net_input
 
     torch.set_num_threads(1)  # two trainings side by side beat one on two threads here
     torch.manual_seed(settings.seed)
@@ -128,6 +132,7 @@ def fit(cache: Path, train_ids: list[str], settings: Settings):  # type: ignore[
                 song["onset_levels"],
                 song["onset"],
                 targets(len(song["onset"]), reference(sid)),
+                reference(sid),
             )
         )
     n_in = 2 * data[0][0].shape[1]
@@ -142,12 +147,20 @@ def fit(cache: Path, train_ids: list[str], settings: Settings):  # type: ignore[
         for step in range(steps):
             xs, ys = [], []
             for i in order[step * settings.batch : (step + 1) * settings.batch]:
-                levels, onset, y = data[i]
-                start = int(rng.integers(0, max(1, len(y) - crop)))
+                levels, onset, y, beats = data[i]
+                if settings.stretch == 1.0:
+                    start = int(rng.integers(0, max(1, len(y) - crop)))
+                    lv, on, yy = (a[start : start + crop] for a in (levels, onset, y))
+                else:  # crop frame k is the song's frame start + k * factor
+                    factor = np.exp(rng.uniform(-1.0, 1.0) * np.log(settings.stretch))
+                    span = min(len(y) - 1.0, crop * factor)
+                    start = int(rng.integers(0, max(1, int(len(y) - span))))
+                    at = start + np.arange(int(span / factor)) * factor
+                    lv, on = _resample(levels, at), _resample(onset, at)
+                    yy = targets(len(at), (beats * FPS - start) / factor / FPS)
                 gain = np.float32(rng.uniform(-settings.gain_db, settings.gain_db))
-                lv = levels[start : start + crop] + gain
-                xs.append(net_input(lv, onset[start : start + crop]))
-                ys.append(y[start : start + crop])
+                xs.append(net_input(lv + gain, on))
+                ys.append(yy)
             length = min(len(y) for y in ys)
             x = torch.from_numpy(np.stack([a[:length] for a in xs])).transpose(1, 2)
             target = torch.from_numpy(np.stack([a[:length] for a in ys]))
@@ -260,13 +273,14 @@ def main() -> None:
     parser.add_argument("--set", default=SETS[-1], choices=SETS)
     parser.add_argument("--net", type=Path, default=None)
     parser.add_argument("--seed", type=int, default=Settings.seed, help="cv: the training seed")
+    parser.add_argument("--stretch", type=float, default=Settings.stretch, help="see Settings")
     parser.add_argument(
         "--seeds", nargs="*", type=int, default=[0, 1, 2, 3], help="train: one net each"
     )
     args = parser.parse_args()
     from sinews.music.beatnet import load_nets, save_nets
 
-    settings = Settings(seed=args.seed)
+    settings = Settings(seed=args.seed, stretch=args.stretch)
     sets = {s["id"]: s["set"] for s in songs_of(SETS)}
     if args.command == "features":
         features(args.cache)
@@ -285,7 +299,7 @@ def main() -> None:
         summary([r for path in args.rows for r in json.loads(path.read_text())], sets)
     elif args.command == "train":
         seen = [s["id"] for s in songs_of(SEEN)]
-        nets = [fit(args.cache, seen, Settings(seed=seed)) for seed in args.seeds]
+        nets = [fit(args.cache, seen, Settings(seed=seed, stretch=args.stretch)) for seed in args.seeds]
         save_nets(nets, args.output or Path("beatnet.npz"))
     else:
         nets = load_nets(args.net) if args.net else load_nets()
