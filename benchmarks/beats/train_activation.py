@@ -23,7 +23,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -299,7 +299,7 @@ def main() -> None:
         summary([r for path in args.rows for r in json.loads(path.read_text())], sets)
     elif args.command == "train":
         seen = [s["id"] for s in songs_of(SEEN)]
-        nets = [fit(args.cache, seen, Settings(seed=seed, stretch=args.stretch)) for seed in args.seeds]
+        nets = [fit(args.cache, seen, replace(settings, seed=seed)) for seed in args.seeds]
         save_nets(nets, args.output or Path("beatnet.npz"))
     else:
         nets = load_nets(args.net) if args.net else load_nets()
