@@ -15,7 +15,8 @@ every seen set (`SEEN`) and writes them together (the shipped activation is thei
 `score` scores one set with the networks of a weights file (default: the shipped ones),
 beside the baseline. Beats are tracked on `sinews.music.beatnet.beat_strength`, as in
 `analyse`. All settings (`Settings`) were fixed before the first run (docs/beats.md, "A network
-with seconds of context").
+with seconds of context"); `--stretch` (session 39, off by default) time-stretches the
+training crops.
 """
 
 from __future__ import annotations
