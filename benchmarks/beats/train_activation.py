@@ -127,15 +127,9 @@ def fit(cache: Path, train_ids: list[str], settings: Settings):  # type: ignore[
     rng = np.random.default_rng(settings.seed)
     data = []
     for sid in train_ids:
-        song = load_song(cache, sid)
-        data.append(
-            (
-                song["onset_levels"],
-                song["onset"],
-                targets(len(song["onset"]), reference(sid)),
-                reference(sid),
-            )
-        )
+        song, beats = load_song(cache, sid), reference(sid)
+        onset = song["onset"]
+        data.append((song["onset_levels"], onset, targets(len(onset), beats), beats))
     n_in = 2 * data[0][0].shape[1]
     model = _model(n_in, settings)
     opt = torch.optim.Adam(model.parameters(), lr=settings.learning_rate)
