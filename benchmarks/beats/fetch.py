@@ -36,6 +36,7 @@ SETS = (
     "confirm11",
     "confirm12",
     "confirm13",
+    "confirm14",
 )
 """The corpus's sets, in the order they were fixed (docs/beats.md)."""
 REFERENCE_TRACKERS = ("madmom", "essentia", "librosa")

@@ -7,16 +7,17 @@
     .venv/bin/python benchmarks/beats/train_activation.py score --set confirm12 [--net FILE]
 
 Needs the excerpts (fetch.py) and PyTorch (dev only: `pip install torch==2.13.0`); the
-shipped network runs in numpy. `features` stores, per song, the network's inputs at 60 fps
-and the beats of the envelope tracker (the baseline) in CACHE/activation/ID.npz. `cv` trains
-one network per fold on the other folds' songs (training seed --seed) and scores each song
-with the network that never saw it, beside the baseline; `train` fits one network per seed on
-every seen set (`SEEN`) and writes them together (the shipped activation is their mean);
-`score` scores one set with the networks of a weights file (default: the shipped ones),
-beside the baseline. Beats are tracked on `sinews.music.beatnet.beat_strength`, as in
-`analyse`. All settings (`Settings`) were fixed before the first run (docs/beats.md, "A network
-with seconds of context"); `--stretch` (session 39, off by default) time-stretches the
-training crops.
+shipped network runs in numpy. `features` stores, for each song of the seen sets, the
+network's inputs at 60 fps and the beats of the envelope tracker (the baseline) in
+CACHE/activation/ID.npz. `cv` trains one network per fold on the other folds' songs (training
+seed --seed) and scores each song with the network that never saw it, beside the baseline;
+`train` fits one network per seed on every seen set (`SEEN`) and writes them together (the
+shipped activation is their mean); `score` stores one set's features and scores it with the
+networks of a weights file (default: the shipped ones), beside the baseline, so only `score`
+runs a tracker on the unseen set. Beats are tracked on `sinews.music.beatnet.beat_strength`,
+as in `analyse`. All settings (`Settings`) were fixed before the first run (docs/beats.md, "A
+network with seconds of context"); `--stretch` (session 39, off by default) time-stretches
+the training crops.
 """
 
 from __future__ import annotations
@@ -76,7 +77,7 @@ def reference(song_id: str) -> np.ndarray:
     return np.loadtxt(HERE / "reference" / f"{song_id}.txt", ndmin=1)
 
 
-def features(cache: Path) -> None:
+def features(cache: Path, sets: tuple[str, ...]) -> None:
     """Store each song's network inputs (levels, onsets) and the envelope tracker's beats."""
     from sinews.music import load_audio
     from sinews.music.analysis import band_levels
@@ -87,7 +88,7 @@ def features(cache: Path) -> None:
     out = cache / "activation"
     out.mkdir(parents=True, exist_ok=True)
     edges = band_edges(DEFAULT_BANDS)
-    for song in songs_of(SETS):
+    for song in songs_of(sets):
         path = out / f"{song['id']}.npz"
         if path.exists():
             continue
@@ -278,7 +279,7 @@ def main() -> None:
     settings = Settings(seed=args.seed, stretch=args.stretch)
     sets = {s["id"]: s["set"] for s in songs_of(SETS)}
     if args.command == "features":
-        features(args.cache)
+        features(args.cache, SEEN)
     elif args.command == "cv":
         rows = []
         for k in args.folds:
@@ -298,6 +299,7 @@ def main() -> None:
         save_nets(nets, args.output or Path("beatnet.npz"))
     else:
         nets = load_nets(args.net) if args.net else load_nets()
+        features(args.cache, (args.set,))
         summary(rate(args.cache, nets, [s["id"] for s in songs_of((args.set,))]), sets)
 
 
