@@ -33,7 +33,7 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
-from fetch import PAIR_COLUMNS, SETS, default_cache, excerpt_path, load_corpus  # noqa: E402
+from fetch import PAIR_COLUMNS, SETS, default_cache, excerpt_path, in_set, load_corpus  # noqa: E402
 from metrics import score, tempo_of, trim  # noqa: E402
 
 CONTESTED_F = 0.2
@@ -91,7 +91,7 @@ def main() -> None:
     chosen = [
         s
         for s in songs
-        if (args.set == "all" or s["set"] == args.set)
+        if in_set(s, args.set)
         and (HERE / "reference" / f"{s['id']}.txt").exists()
         and (not args.only or s["id"] in args.only)
     ]

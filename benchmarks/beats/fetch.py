@@ -39,6 +39,9 @@ SETS = (
     "confirm14",
 )
 """The corpus's sets, in the order they were fixed (docs/beats.md)."""
+SEEN = SETS[:-1]
+"""Every set but the newest, which is kept unseen for one final score."""
+
 REFERENCE_TRACKERS = ("madmom", "essentia", "librosa")
 """The trackers whose consensus makes the reference beats (make_reference.py)."""
 PAIR_COLUMNS = {
@@ -57,6 +60,11 @@ def load_corpus() -> tuple[float, list[dict]]:
     with open(HERE / "corpus.toml", "rb") as fh:
         corpus = tomllib.load(fh)
     return float(corpus["duration"]), corpus["song"]
+
+
+def in_set(song: dict, name: str) -> bool:
+    """Whether ``song`` is in the set ``name``; "all" is every seen set (`SEEN`)."""
+    return song["set"] in SEEN if name == "all" else song["set"] == name
 
 
 def excerpt_path(cache: Path, song_id: str) -> Path:

@@ -25,7 +25,7 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
-from fetch import SETS, default_cache, excerpt_path, load_corpus  # noqa: E402
+from fetch import SETS, default_cache, excerpt_path, in_set, load_corpus  # noqa: E402
 
 
 def alternation(values: np.ndarray, frames: np.ndarray) -> float:
@@ -47,7 +47,7 @@ def main() -> None:
     print("|---|---|---|---|---|---|")
     for song in songs:
         reference = HERE / "reference" / f"{song['id']}.txt"
-        if not (args.set == "all" or song["set"] == args.set) or not reference.exists():
+        if not in_set(song, args.set) or not reference.exists():
             continue
         music = analyse_file(excerpt_path(args.cache, song["id"]))
         fps = music.fps

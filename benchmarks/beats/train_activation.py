@@ -33,13 +33,11 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
-from fetch import SETS, default_cache, excerpt_path, load_corpus  # noqa: E402
+from fetch import SEEN, SETS, default_cache, excerpt_path, load_corpus  # noqa: E402
 from metrics import score  # noqa: E402
 
 from sinews.music.beatnet import NET_FPS as FPS  # noqa: E402
 
-SEEN = SETS[:-1]
-"""Every set but the newest, which is kept unseen for one final score."""
 FOLDS = (
     ("tune", "confirm3"),
     ("heldout", "confirm", "confirm2", "confirm5", "confirm6"),

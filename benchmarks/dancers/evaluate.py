@@ -40,7 +40,7 @@ HERE = Path(__file__).resolve().parent
 BEATS = HERE.parent / "beats"
 sys.path.insert(0, str(BEATS))
 
-from fetch import SETS, default_cache, excerpt_path, load_corpus  # noqa: E402
+from fetch import SETS, default_cache, excerpt_path, in_set, load_corpus  # noqa: E402
 
 STRETCH_LIMIT = 1.5
 TRUNK = ("neck", "chest", "belly", "pelvis", "l_hip", "r_hip")
@@ -135,7 +135,7 @@ def main() -> None:
     chosen = [
         s
         for s in songs
-        if (args.set == "all" or s["set"] == args.set)
+        if in_set(s, args.set)
         and (BEATS / "reference" / f"{s['id']}.txt").exists()
         and (not args.only or s["id"] in args.only)
     ]
