@@ -1,6 +1,6 @@
 """Score sinews' beat tracker against the corpus's reference beats, and time it.
 
-    .venv/bin/python benchmarks/beats/evaluate.py [--set SET|all]  (SET: fetch.SETS)
+    .venv/bin/python benchmarks/beats/evaluate.py [--set SET|all] (fetch.SETS; all: fetch.SEEN)
         [--librosa-python /work/evalvenv/bin/python] [--json OUT] [--repeats 3]
 
 Each excerpt (see fetch.py) is decoded once with `sinews.music.load_audio`; `analyse` (the

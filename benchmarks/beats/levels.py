@@ -1,6 +1,6 @@
 """What tells a slow metrical level from its double? Two measures per song (docs/beats.md).
 
-    .venv/bin/python benchmarks/beats/levels.py [--set SET|all]  (SET: fetch.SETS)
+    .venv/bin/python benchmarks/beats/levels.py [--set SET|all]  (SET: fetch.SETS; all: fetch.SEEN)
 
 For each song with reference beats: our tempo, the reference's, and the level the
 reference is at relative to ours. The pair of levels is (S, 2S) with 2S = our tempo if it

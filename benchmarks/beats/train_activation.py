@@ -76,7 +76,8 @@ def reference(song_id: str) -> np.ndarray:
 
 
 def features(cache: Path, sets: tuple[str, ...]) -> None:
-    """Store each song's network inputs (levels, onsets) and the envelope tracker's beats."""
+    """Store the network inputs (levels, onsets) and the envelope tracker's beats of each song
+    of ``sets``."""
     from sinews.music import load_audio
     from sinews.music.analysis import band_levels
     from sinews.music.beats import onset_envelope, track

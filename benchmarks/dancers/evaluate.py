@@ -1,6 +1,6 @@
 """How well dancers follow real music: beat lift against REFERENCE beats, smoothness, stretch.
 
-    .venv/bin/python benchmarks/dancers/evaluate.py [--set SET|all] [--dancers 16]
+    .venv/bin/python benchmarks/dancers/evaluate.py [--set SET|all (fetch.SEEN)] [--dancers 16]
         [--seconds 50] [--genome-seed 1] [--evolve N] [--only ID ...] [--json OUT]
 
 Uses the beat corpus of benchmarks/beats/ (audio: `python3 benchmarks/beats/fetch.py`;
