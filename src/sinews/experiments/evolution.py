@@ -43,11 +43,14 @@ from sinews.store import GenerationRecord, Individual, RunStore, ScoreTable
 from sinews.store.lease import run_lease
 
 __all__ = [
+    "CLEAN_TERMS",
+    "GOAL_TERM",
     "GenerationSummary",
     "Restart",
     "Scorer",
     "Scores",
     "Strategies",
+    "adequate_rows",
     "advance",
     "best_at_full_weight",
     "continue_run",
@@ -470,13 +473,38 @@ def stalled(store: RunStore, run_id: int, spec: FitnessSpec, *, since: int, rule
     return bool(bests[-rule.after :].max() <= bests[: -rule.after].max() + rule.gain)
 
 
-def best_at_full_weight(store: RunStore, run_id: int, spec: FitnessSpec) -> Individual:
+CLEAN_TERMS = ("head", "fallen", "touch")
+"""Style terms an adequate individual loses nothing on (a run without one keeps it)."""
+GOAL_TERM = "distance"
+"""The term an adequate test bounds: minus the distance to the goal, m."""
+
+
+def adequate_rows(table: ScoreTable, within: float) -> npt.NDArray[np.bool_]:
+    """(n,) whether each scored individual passes the adequate test of a run made with
+    ``until``: not failed, within ``within`` m of the goal (`GOAL_TERM` at least
+    ``-within``) and nothing lost on `CLEAN_TERMS`."""
+
+    def passes(terms: Mapping[str, float | None], failed: bool) -> bool:
+        goal = terms.get(GOAL_TERM)
+        clean = all((terms.get(name) or 0.0) == 0.0 for name in CLEAN_TERMS)
+        return not failed and clean and goal is not None and goal >= -within
+
+    rows = [passes(t, bool(f)) for t, f in zip(table.terms, table.failed, strict=True)]
+    return np.array(rows, dtype=np.bool_).reshape(len(rows))
+
+
+def best_at_full_weight(
+    store: RunStore, run_id: int, spec: FitnessSpec, *, within: float | None = None
+) -> Individual:
     """The run's best individual rated by its stored terms at full style weight.
 
     With style phased in, an early generation's best is rated by the main goal
     alone and may outscore every later one; rated at full weight, as the last
     generations are, it does not. Without a phase-in this is `RunStore.best`.
-    The earliest individual wins ties.
+    The earliest individual wins ties. With ``within`` (m, a run made with
+    ``until``), the best of the individuals that pass the adequate test
+    (`adequate_rows`) if any do, so a run stopped by the test reports a program
+    that passes it.
 
     Raises:
         StoreError: the run has no scored individuals.
@@ -484,5 +512,9 @@ def best_at_full_weight(store: RunStore, run_id: int, spec: FitnessSpec) -> Indi
     table = store.scores(run_id)
     if not len(table.fitness):
         return store.best(run_id)  # raises, naming the run
-    k = int(np.argmax(full_weight_fitness(table.terms, table.failed, spec)))
+    full = full_weight_fitness(table.terms, table.failed, spec)
+    rows = np.arange(len(full))
+    if within is not None and (passing := adequate_rows(table, within)).any():
+        rows = rows[passing]
+    k = int(rows[np.argmax(full[rows])])
     return store.individuals(run_id, int(table.generation[k]))[int(table.index[k])]

@@ -274,18 +274,23 @@ def best_of(store: RunStore, run_id: int) -> Individual:
     A run bred by hand has no fitness: its best is the person's latest pick.
     Otherwise it is the individual whose stored terms rate highest at full
     style weight (`best_at_full_weight`; the same as the stored fitness when
-    style is not phased in).
+    style is not phased in); of a run made with ``until`` (GP), the highest of
+    those that pass its adequate test, if any do.
 
     Raises:
         SinewsError: nothing picked yet, or nothing scored.
     """
-    config = EvolutionConfig.from_dict(store.run(run_id).config)
+    stored = store.run(run_id).config
+    config = EvolutionConfig.from_dict(stored)
     if config.by_hand:
         picks = store.picks(run_id)
         if not picks:
             raise SinewsError(f"run {run_id} is bred by hand and nothing is picked yet")
         return picks[-1]
-    return best_at_full_weight(store, run_id, config.fitness)
+    until = stored.get("until")
+    return best_at_full_weight(
+        store, run_id, config.fitness, within=None if until is None else float(until)
+    )
 
 
 def chosen_of(store: RunStore, run_id: int, individual: int | None) -> Individual:

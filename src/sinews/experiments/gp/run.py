@@ -28,6 +28,7 @@ from sinews.experiments.evolution import (
     GenerationSummary,
     Restart,
     Strategies,
+    adequate_rows,
     continue_run,
     record_picks,
 )
@@ -50,7 +51,6 @@ from sinews.render.figure_scene import scene_of
 from sinews.store import Individual, RunInfo, RunStore
 
 __all__ = [
-    "CLEAN_TERMS",
     "CONTROLLER",
     "DEFAULTS",
     "KIND",
@@ -111,21 +111,14 @@ DANCE_FUNCTIONS = (*BASIC_FUNCTIONS, "sin", "cos")
 RESTART_GAIN = 0.001
 """The least rise of a GP run's best at full weight (fitness is in metres: 1 mm) over
 ``restart_after`` generations that is not a stall."""
-CLEAN_TERMS = ("head", "fallen", "touch")
-"""Style terms an adequate program must not lose anything on."""
 
 
 def adequate(store: RunStore, run_id: int, within: float) -> bool:
-    """Whether the run's last generation holds a program within ``within`` m of the goal
-    that loses nothing on the clean terms (`CLEAN_TERMS`)."""
-    last = store.last_generation(run_id)
-    for individual in store.individuals(run_id, last) if last >= 0 else []:
-        terms = individual.terms or {}
-        clean = all((terms.get(name) or 0.0) == 0.0 for name in CLEAN_TERMS)
-        distance = terms.get("distance")
-        if clean and not individual.failed and distance is not None and distance >= -within:
-            return True
-    return False
+    """Whether the run's last generation holds a program that passes the adequate test
+    (`adequate_rows`: within ``within`` m of the goal, nothing lost on `CLEAN_TERMS`)."""
+    table = store.scores(run_id)
+    last = table.generation == store.last_generation(run_id)
+    return bool(adequate_rows(table, within)[last].any())
 
 
 class GPKind:
