@@ -290,6 +290,8 @@ def test_ctrl_c_in_a_group_leaves_no_run_marked_running(tmp_path: Path) -> None:
         (["--config", "text.toml"], "constraints must be a list of term names"),
         (["--config", "late.toml"], "constraints_from must be a generation from 0 to"),
         (["--config", "loose.toml"], "constraints_from needs constraints"),
+        (["--config", "vague.toml"], "restart_phase_in must be true or false"),
+        (["--config", "anew.toml"], "restart_phase_in needs restart_after"),
     ],
 )
 def test_bad_group_and_termination_settings(tmp_path: Path, extra: list[str], message: str) -> None:
@@ -300,6 +302,8 @@ def test_bad_group_and_termination_settings(tmp_path: Path, extra: list[str], me
     (tmp_path / "late.toml").write_text('constraints = ["head"]\nconstraints_from = "5"\n')
     (tmp_path / "loose.toml").write_text("constraints_from = 5\n")
     (tmp_path / "half.toml").write_text("restart_after = 2.5\n")
+    (tmp_path / "vague.toml").write_text('restart_after = 3\nrestart_phase_in = "yes"\n')
+    (tmp_path / "anew.toml").write_text("restart_phase_in = true\n")
     args = ["evolve", "luxo", "--controller", "gp", "--task", "hop", *extra, "--db", "r.db"]
     done = subprocess.run([*sinews_command(), *args], capture_output=True, text=True, cwd=tmp_path)
     assert done.returncode == 2 and done.stderr.count("\n") == 1 and message in done.stderr

@@ -9,7 +9,7 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from sinews.evolve import FitnessSpec, GenomeSpace, restore_strategy
+from sinews.evolve import FitnessSpec, GenomeSpace, PhaseIn, restore_strategy
 from sinews.evolve.errors import StrategyError
 from sinews.experiments.evolution import Restart, Scores, Strategies, continue_run, stalled
 from sinews.store import RunStore
@@ -62,6 +62,38 @@ def test_a_run_that_gains_nothing_restarts_every_restart_after_plus_one(tmp_path
             assert strategy.started == 4 * (generation // 4)
         assert all(not ind.parents for ind in store.individuals(1, 4))
         assert all(ind.parents for ind in store.individuals(1, 5))
+
+
+@pytest.mark.parametrize("per_try", [False, True])
+def test_a_try_rated_as_a_run_of_its_own_phases_style_in_again(
+    tmp_path: Path, per_try: bool
+) -> None:
+    """x is always 0 and the style term y always -1, so a generation's fitness is minus
+    its style weight: the phase-in by the generation's number, or by its age in its try."""
+    phase = PhaseIn(start=1, full=3)
+    spec = FitnessSpec(main="x", weights={"x": 1.0, "y": 1.0}, phase_in=phase)
+
+    class StyledScorer:
+        term_names = ("x", "y")
+
+        def __call__(
+            self, genomes: npt.NDArray[np.float64], seeds: npt.NDArray[np.int64]
+        ) -> Scores:
+            terms = np.column_stack([np.zeros(len(genomes)), -np.ones(len(genomes))])
+            return Scores(terms=terms, failed=np.zeros(len(genomes), dtype=bool))
+
+    with RunStore(tmp_path / "r.db") as store:
+        config = {"population": 4, "generations": 12, "seed": 2,
+                  "strategy": {"name": "ga", "options": {}}, "fitness": spec.to_dict()}  # fmt: skip
+        store.create_run("test", config=config, seed=2, genome_codec="float64")
+        continue_run(store, 1, scorer=StyledScorer(), spec=spec, strategies=STRATEGIES,
+                     restart=Restart(3, phase_in=per_try))  # fmt: skip
+        starts = [0, *store.restarts(1)]
+        assert starts == [0, 4, 8]  # stalled at full weight: -1 throughout
+        for generation in range(12):
+            age = generation - max(s for s in starts if s <= generation)
+            expected = -phase.factor(age if per_try else generation)
+            assert store.generation_fitness(1, generation) == pytest.approx(expected)
 
 
 def test_a_run_still_gaining_never_restarts(tmp_path: Path) -> None:

@@ -101,10 +101,13 @@ class Restart:
         after: generations without a gain that make a stall.
         gain: the least rise of the best at full weight, in fitness units, that counts as
             a gain over those generations (a run creeping up by hair-widths is stalled).
+        phase_in: each try is rated as a run of its own: style and the constraints phase
+            in again from its first generation (False: they go on where they were).
     """
 
     after: int
     gain: float = 0.0
+    phase_in: bool = False
 
 
 @dataclass(frozen=True)
@@ -184,15 +187,16 @@ def _columns(
 
 
 def _soft(
-    store: RunStore, run_id: int, generation: int, spec: FitnessSpec | None
+    store: RunStore, run_id: int, generation: int, spec: FitnessSpec | None, rated: int
 ) -> npt.NDArray[np.float64] | None:
     """(P,) ``generation``'s weighted sums without the constraints ranked, from its stored
-    terms; None where they are its fitness (no constraints ranked then)."""
-    if spec is None or not spec.ranks_constraints(generation):
+    terms, rated as generation ``rated`` (see `advance`); None where they are its fitness
+    (no constraints ranked then)."""
+    if spec is None or not spec.ranks_constraints(rated):
         return None
     people = store.individuals(run_id, generation)
     terms = _stored([p.terms or {} for p in people], spec)
-    return spec.weighted(terms, np.array([p.failed for p in people], dtype=bool), generation)
+    return spec.weighted(terms, np.array([p.failed for p in people], dtype=bool), rated)
 
 
 def _tell(
@@ -224,6 +228,7 @@ def advance(
     strategy: AskTell[Any],
     picks: list[int] | None = None,
     fresh: bool = False,
+    per_try: bool = False,
 ) -> GenerationSummary:
     """Make, score and store the next generation of a run.
 
@@ -237,6 +242,8 @@ def advance(
         picks: a person's picks in the last generation (interactive and
             hybrid runs); stored in the same transaction.
         fresh: make the generation at random instead of breeding it (a restart).
+        per_try: rate each generation (style weights, constraints) by its age in its try,
+            the generations since the strategy last `started`, not by its number.
 
     Returns:
         The summary of the stored generation.
@@ -245,7 +252,8 @@ def advance(
     info = store.run(run_id)
     last = store.last_generation(run_id)
     if last >= 0:
-        soft = _soft(store, run_id, last, spec) if "soft" in strategy.takes else None
+        rated = last - strategy.started if per_try else last
+        soft = _soft(store, run_id, last, spec, rated) if "soft" in strategy.takes else None
         _tell(strategy, store.generation_fitness(run_id, last), list(picks or []), soft)
     genomes = strategy.genomes(strategy.ask(fresh=fresh))
     checkpoint = strategy.to_bytes()
@@ -266,7 +274,9 @@ def advance(
         scores = scorer(genomes, seeds)
         failed = scores.failed
         weighed = _columns(scores.terms, scorer.term_names, spec.names)
-        total = spec.combine(weighed, failed, generation)
+        total = spec.combine(
+            weighed, failed, generation - strategy.started if per_try else generation
+        )
         record = dataclasses.replace(
             record,
             fitness=total,
@@ -359,7 +369,8 @@ def continue_run(
                     and stalled(store, run_id, spec, since=strategy.started, rule=restart)
                 )  # fmt: skip
                 summary = advance(store, run_id, scorer=scorer, spec=spec, strategy=strategy,
-                                  picks=kept, fresh=fresh)  # fmt: skip
+                                  picks=kept, fresh=fresh,
+                                  per_try=restart is not None and restart.phase_in)  # fmt: skip
                 if on_generation is not None:
                     on_generation(summary)
         except BaseException:

@@ -100,12 +100,14 @@ DEFAULTS: dict[str, Any] = {
     "erc_range": list(GPSettings.erc_range),
     "until": None,
     "restart_after": None,
+    "restart_phase_in": None,
     "song": None,
 }
 """The paper's run (250 programs, 50 generations) unless told otherwise; the task's
 terms make the fitness, and style is phased in from a tenth of the run to its end."""
 _KIND_KEYS = ("task", "target", "pole_height", "lamp", "seconds", "control_hz", "physics_hz",
-              "functions", "erc_range", "until", "restart_after", "song")  # fmt: skip
+              "functions", "erc_range", "until", "restart_after", "restart_phase_in",
+              "song")  # fmt: skip
 DANCE_FUNCTIONS = (*BASIC_FUNCTIONS, "sin", "cos")
 """A dance's default function set: the paper's, with ``sin`` and ``cos`` for the beat."""
 RESTART_GAIN = 0.001
@@ -194,6 +196,14 @@ class GPKind:
         if restart_after is not None:
             restarts["restart_after"] = check_whole("restart_after", restart_after, 1,
                                                     MAX_GENERATIONS)  # fmt: skip
+        rephase = extra.pop("restart_phase_in", None)
+        if rephase is not None:
+            if not isinstance(rephase, bool):
+                raise ConfigError("restart_phase_in must be true or false")
+            if restart_after is None:
+                raise ConfigError("restart_phase_in needs restart_after")
+            if rephase:
+                restarts["restart_phase_in"] = True
         song_setting = extra.pop("song", None)
         named = {"song": song_setting} if song_setting else {}  # what `runs list` shows
         heard = {} if song is None else {"song_path": str(song[0]), "song_hash": song[1].song_hash}
@@ -227,18 +237,20 @@ class GPKind:
         A run made with ``until`` (metres) stops at the first generation that
         holds an adequate program: within ``until`` of the goal and clean (no
         head contact, never down, the bar untouched). One made with ``restart_after``
-        starts afresh when it stalls that long (see `continue_run`).
+        starts afresh when it stalls that long (see `continue_run`); with
+        ``restart_phase_in`` each try phases style and the constraints in anew.
         """
         info = store.run(run_id)
         settings = _settings(info)
         until, after = info.config.get("until"), info.config.get("restart_after")
+        rephase = bool(info.config.get("restart_phase_in", False))
         continue_run(
             store, run_id, scorer=GPScorer(settings, evaluator, log),
             spec=EvolutionConfig.from_dict(info.config).fitness,
             strategies=Strategies(settings.genomes), generations=generations,
             on_generation=on_generation,
             stop=None if until is None else lambda: adequate(store, run_id, float(until)),
-            restart=None if after is None else Restart(int(after), RESTART_GAIN),
+            restart=None if after is None else Restart(int(after), RESTART_GAIN, rephase),
         )  # fmt: skip
 
     def pick(
