@@ -158,7 +158,7 @@ def test_soft_breeding_is_told_the_weighted_sums_and_resumes_bit_for_bit(
     with RunStore(soft) as store:
         spec = EvolutionConfig.from_dict(store.run(1).config).fitness
         table = store.scores(1)
-        told = [_soft(store, 1, g, spec) for g in range(8)]
+        told = [_soft(store, 1, g, spec, g) for g in range(8)]
     ranked = [g for g, sums in enumerate(told) if sums is not None]
     assert ranked == list(range(8))
     faulty_all = np.array([(t["head"] or 0) < 0 or (t["fallen"] or 0) < 0 for t in table.terms])
