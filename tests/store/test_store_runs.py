@@ -182,6 +182,9 @@ def test_best_status_media_and_stats(store: RunStore, tmp_path: Path) -> None:
     assert stats.best[0] == first.max()
     assert stats.mean[0] == pytest.approx(first[[0, 2, 3]].mean())
     assert stats.best_terms["a"][0] == scores.terms[int(np.argmax(first))]["a"]
+    later = store.scores(run, since=1)
+    assert later.generation.tolist() == [1] * P
+    np.testing.assert_array_equal(later.fitness, scores.fitness[P:])
 
 
 def test_export_writes_plain_files(store: RunStore, tmp_path: Path) -> None:

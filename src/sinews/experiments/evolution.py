@@ -465,8 +465,8 @@ def full_weight_bests(table: ScoreTable, spec: FitnessSpec) -> npt.NDArray[np.fl
     style weight; this is the same generation rated as the last ones are.
     """
     full = full_weight_fitness(table.terms, table.failed, spec)
-    generations = np.unique(table.generation)
-    return np.array([full[table.generation == g].max() for g in generations], dtype=np.float64)
+    _, starts = np.unique(table.generation, return_index=True)  # the table is by generation
+    return np.maximum.reduceat(full, starts) if len(full) else np.zeros(0)
 
 
 def stalled(store: RunStore, run_id: int, spec: FitnessSpec, *, since: int, rule: Restart) -> bool:
@@ -477,8 +477,7 @@ def stalled(store: RunStore, run_id: int, spec: FitnessSpec, *, since: int, rule
     Rated at full weight, a generation's best does not fall as style phases in, so a run
     still gaining is never called stalled; one that gains nothing for ``after`` is.
     """
-    table = store.scores(run_id)
-    bests = full_weight_bests(table, spec)[np.unique(table.generation) >= since]
+    bests = full_weight_bests(store.scores(run_id, since=since), spec)
     if len(bests) <= rule.after:
         return False
     return bool(bests[-rule.after :].max() <= bests[: -rule.after].max() + rule.gain)

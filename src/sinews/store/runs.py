@@ -391,12 +391,13 @@ class RunStore:
             order="i.generation DESC, i.idx",
         )
 
-    def scores(self, run_id: int) -> ScoreTable:
-        """Every scored individual's fitness, terms and failed flag (for stats and plots)."""
+    def scores(self, run_id: int, *, since: int = 0) -> ScoreTable:
+        """Every scored individual's fitness, terms and failed flag (for stats and plots),
+        of the generations from ``since`` on."""
         rows = self._query(
-            "SELECT generation, idx, fitness, failed, terms FROM individuals "
-            "WHERE run_id = ? AND fitness IS NOT NULL ORDER BY generation, idx",
-            (run_id,),
+            "SELECT generation, idx, fitness, failed, terms FROM individuals WHERE run_id = ? "
+            "AND generation >= ? AND fitness IS NOT NULL ORDER BY generation, idx",
+            (run_id, since),
         )
         return ScoreTable(
             generation=np.array([r[0] for r in rows], dtype=np.int64),

@@ -118,9 +118,8 @@ RESTART_GAIN = 0.001
 def adequate(store: RunStore, run_id: int, within: float) -> bool:
     """Whether the run's last generation holds a program that passes the adequate test
     (`adequate_rows`: within ``within`` m of the goal, nothing lost on `CLEAN_TERMS`)."""
-    table = store.scores(run_id)
-    last = table.generation == store.last_generation(run_id)
-    return bool(adequate_rows(table, within)[last].any())
+    last = store.last_generation(run_id)
+    return last >= 0 and bool(adequate_rows(store.scores(run_id, since=last), within).any())
 
 
 class GPKind:
