@@ -61,7 +61,26 @@ class Settings:
     stretch: float = 1.0
     """Crops are time-stretched by a factor drawn log-uniformly in [1/stretch, stretch]
     (1: none, the shipped networks' recipe)."""
+    tempo_weight: float = 0.0
+    """Weight of a tempo classifier trained beside the beats (session 42; 0: none, the shipped
+    recipe). It reads the last hidden state averaged over the crop, has `TEMPO_BINS` 1-BPM
+    classes, and is dropped on export: it shapes only the shared weights."""
     seed: int = 0
+
+
+TEMPO_BINS = 300
+"""The tempo classifier's classes: 0-299 BPM in 1-BPM bins (Böck, Davies & Krebs 2019)."""
+
+
+def tempo_target(beats: np.ndarray, song_beats: np.ndarray) -> np.ndarray:
+    """(TEMPO_BINS,) the soft tempo class of a crop whose reference beats (s) are ``beats``:
+    1 at 60 / their median interval, 0.5 and 0.25 one and two bins away, summing to 1 (the
+    song's tempo, from ``song_beats``, where the crop holds fewer than three beats)."""
+    spans = np.diff(beats) if len(beats) >= 3 else np.diff(song_beats)
+    centre = int(np.clip(round(60.0 / float(np.median(spans))), 2, TEMPO_BINS - 3))
+    y = np.zeros(TEMPO_BINS, dtype=np.float32)
+    y[centre - 2 : centre + 3] = (0.25, 0.5, 1.0, 0.5, 0.25)
+    return y / y.sum()
 
 
 def songs_of(sets: tuple[str, ...]) -> list[dict]:
@@ -137,14 +156,14 @@ def fit(cache: Path, train_ids: list[str], settings: Settings):  # type: ignore[
     steps = max(1, len(data) // settings.batch)
     for epoch in range(settings.epochs):
         order = rng.permutation(len(data))
-        total = 0.0
+        total = total_tempo = 0.0
         model.train()
         for step in range(steps):
-            xs, ys = [], []
+            xs, ys, crop_beats = [], [], []
             for i in order[step * settings.batch : (step + 1) * settings.batch]:
                 levels, onset, y, beats = data[i]
                 if settings.stretch == 1.0:
-                    start = int(rng.integers(0, max(1, len(y) - crop)))
+                    start, factor = int(rng.integers(0, max(1, len(y) - crop))), 1.0
                     lv, on, yy = (a[start : start + crop] for a in (levels, onset, y))
                 else:  # crop frame k is the song's frame start + k * factor
                     factor = np.exp(rng.uniform(-1.0, 1.0) * np.log(settings.stretch))
@@ -156,16 +175,27 @@ def fit(cache: Path, train_ids: list[str], settings: Settings):  # type: ignore[
                 gain = np.float32(rng.uniform(-settings.gain_db, settings.gain_db))
                 xs.append(net_input(lv + gain, on))
                 ys.append(yy)
+                crop_beats.append(((beats * FPS - start) / factor / FPS, beats / factor))
             length = min(len(y) for y in ys)
             x = torch.from_numpy(np.stack([a[:length] for a in xs])).transpose(1, 2)
             target = torch.from_numpy(np.stack([a[:length] for a in ys]))
-            logits = model(x)
+            logits, tempo_logits = model(x)
             loss = torch.nn.functional.binary_cross_entropy_with_logits(logits, target)
+            if settings.tempo_weight > 0:
+                tempi = np.stack([
+                    tempo_target(b[(b >= 0) & (b < length / FPS)], whole)
+                    for b, whole in crop_beats
+                ])  # fmt: skip
+                log_p = torch.log_softmax(tempo_logits, dim=1)
+                tempo_loss = -(torch.from_numpy(tempi) * log_p).sum(dim=1).mean()
+                loss = loss + settings.tempo_weight * tempo_loss
+                total_tempo += float(tempo_loss.detach())
             opt.zero_grad()
             loss.backward()
             opt.step()
-            total += float(loss)
-        print(f"epoch {epoch + 1}: loss {total / steps:.4f}", file=sys.stderr)
+            total += float(loss.detach())
+        print(f"epoch {epoch + 1}: loss {total / steps:.4f} (tempo {total_tempo / steps:.4f})",
+              file=sys.stderr)  # fmt: skip
     return model.export()
 
 
@@ -188,12 +218,18 @@ def _model(n_in: int, settings: Settings):  # type: ignore[no-untyped-def]
             self.mixes = nn.ModuleList(nn.Conv1d(c, c, 1) for _ in settings.dilations)
             self.drop = nn.Dropout(settings.dropout)
             self.out = nn.Conv1d(c, 1, 1)
+            # made only when trained, so the shipped recipe draws the same random numbers
+            self.tempo = nn.Linear(c, TEMPO_BINS) if settings.tempo_weight > 0 else None
 
-        def forward(self, x: torch.Tensor) -> torch.Tensor:
+        def forward(self, x: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor | None]:
+            """(B, T) beat logits and (B, TEMPO_BINS) tempo logits (None without the head)
+            of (B, F, T) features."""
             h = self.inp(x)
             for conv, mix in zip(self.convs, self.mixes, strict=True):
                 h = h + mix(self.drop(nn.functional.elu(conv(h))))
-            return self.out(nn.functional.elu(h))[:, 0, :]
+            last = nn.functional.elu(h)
+            tempo = None if self.tempo is None else self.tempo(self.drop(last.mean(dim=2)))
+            return self.out(last)[:, 0, :], tempo
 
         def export(self) -> BeatNet:
             def arr(t: torch.Tensor) -> np.ndarray:
@@ -270,12 +306,15 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=Settings.seed, help="cv: the training seed")
     parser.add_argument("--stretch", type=float, default=Settings.stretch, help="see Settings")
     parser.add_argument(
+        "--tempo-weight", type=float, default=Settings.tempo_weight, help="see Settings"
+    )
+    parser.add_argument(
         "--seeds", nargs="*", type=int, default=[0, 1, 2, 3], help="train: one net each"
     )
     args = parser.parse_args()
     from sinews.music.beatnet import load_nets, save_nets
 
-    settings = Settings(seed=args.seed, stretch=args.stretch)
+    settings = Settings(seed=args.seed, stretch=args.stretch, tempo_weight=args.tempo_weight)
     sets = {s["id"]: s["set"] for s in songs_of(SETS)}
     if args.command == "features":
         features(args.cache, SEEN)
